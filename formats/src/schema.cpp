@@ -1,0 +1,1 @@
+#include "tfmb/formats/schema.hpp"

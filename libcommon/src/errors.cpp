@@ -1,0 +1,1 @@
+#include "tfmb/common/errors.hpp"

@@ -1,0 +1,685 @@
+#include "tfmb/common/h5.hpp"
+
+#include <hdf5.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <numeric>
+#include <sstream>
+
+#include "tfmb/common/errors.hpp"
+
+static_assert(sizeof(hid_t) == sizeof(std::int64_t), "hid_t is expected to be 64-bit");
+
+namespace tfmb::h5 {
+namespace {
+
+// HDF5 prints its own error stack to stderr by default; we report one located line instead.
+void silence_hdf5_errors() {
+  static const bool silenced = [] {
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+    return true;
+  }();
+  (void)silenced;
+}
+
+// Closes an HDF5 identifier of any kind when it goes out of scope.
+class Handle {
+ public:
+  explicit Handle(hid_t id = H5I_INVALID_HID) : id_(id) {}
+  ~Handle() { reset(); }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  Handle(Handle&& o) noexcept : id_(o.id_) { o.id_ = H5I_INVALID_HID; }
+  hid_t get() const { return id_; }
+  bool valid() const { return id_ >= 0; }
+  void reset() {
+    if (id_ >= 0) {
+      switch (H5Iget_type(id_)) {
+        case H5I_FILE: H5Fclose(id_); break;
+        case H5I_GROUP: H5Gclose(id_); break;
+        case H5I_DATASET: H5Dclose(id_); break;
+        case H5I_DATASPACE: H5Sclose(id_); break;
+        case H5I_DATATYPE: H5Tclose(id_); break;
+        case H5I_ATTR: H5Aclose(id_); break;
+        case H5I_GENPROP_LST: H5Pclose(id_); break;
+        default: H5Idec_ref(id_); break;
+      }
+    }
+    id_ = H5I_INVALID_HID;
+  }
+
+ private:
+  hid_t id_;
+};
+
+std::string dtype_name_of(hid_t type) {
+  const H5T_class_t cls = H5Tget_class(type);
+  const std::size_t size = H5Tget_size(type);
+  switch (cls) {
+    case H5T_FLOAT: return "float" + std::to_string(8 * size);
+    case H5T_INTEGER:
+      return std::string(H5Tget_sign(type) == H5T_SGN_NONE ? "uint" : "int") +
+             std::to_string(8 * size);
+    case H5T_STRING: return "string";
+    case H5T_COMPOUND: return "compound";
+    case H5T_ARRAY: return "array";
+    case H5T_ENUM: return "enum";
+    default: return "other";
+  }
+}
+
+DType dtype_of(hid_t type) {
+  const H5T_class_t cls = H5Tget_class(type);
+  const std::size_t size = H5Tget_size(type);
+  if (cls == H5T_FLOAT && size == 8) return DType::float64;
+  if (cls == H5T_INTEGER && size == 8 && H5Tget_sign(type) == H5T_SGN_2) return DType::int64;
+  if (cls == H5T_STRING) return DType::string;
+  return DType::other;
+}
+
+std::string shape_text(const std::vector<std::size_t>& shape) {
+  std::ostringstream out;
+  out << "(";
+  for (std::size_t i = 0; i < shape.size(); ++i) out << (i ? "," : "") << shape[i];
+  if (shape.size() == 1) out << ",";
+  out << ")";
+  return out.str();
+}
+
+std::size_t element_count(const std::vector<std::size_t>& shape) {
+  return std::accumulate(shape.begin(), shape.end(), std::size_t{1}, std::multiplies<>());
+}
+
+hid_t string_type() {
+  hid_t type = H5Tcopy(H5T_C_S1);
+  H5Tset_size(type, H5T_VARIABLE);
+  H5Tset_cset(type, H5T_CSET_UTF8);
+  return type;
+}
+
+}  // namespace
+
+bool is_hdf5_file(const std::filesystem::path& file) {
+  silence_hdf5_errors();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) return false;
+  return H5Fis_hdf5(file.c_str()) > 0;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reader
+
+Reader::Reader(const std::filesystem::path& file) : path_(file) {
+  silence_hdf5_errors();
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) {
+    throw BadInput(file.string() + ": no such file");
+  }
+  if (!std::filesystem::is_regular_file(file, ec)) {
+    throw BadInput(file.string() + ": not a regular file");
+  }
+  if (H5Fis_hdf5(file.c_str()) <= 0) {
+    throw BadInput(file.string() + ": not an HDF5 file (no HDF5 signature)");
+  }
+  file_id_ = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (file_id_ < 0) {
+    throw BadInput(file.string() + ": cannot open as HDF5 (truncated or corrupted file?)");
+  }
+}
+
+Reader::~Reader() {
+  if (file_id_ >= 0) H5Fclose(file_id_);
+}
+
+Reader::Reader(Reader&& other) noexcept : path_(std::move(other.path_)), file_id_(other.file_id_) {
+  other.file_id_ = -1;
+}
+
+void Reader::fail(const std::string& object_path, const std::string& what) const {
+  throw BadInput(path_.string() + ": " + object_path + ": " + what);
+}
+
+bool Reader::exists(const std::string& object_path) const {
+  if (object_path == "/") return true;
+  // H5Lexists fails on a missing intermediate group, so walk the path one link at a time.
+  std::string partial;
+  std::size_t start = 1;
+  while (start <= object_path.size()) {
+    std::size_t end = object_path.find('/', start);
+    if (end == std::string::npos) end = object_path.size();
+    partial = object_path.substr(0, end);
+    if (H5Lexists(file_id_, partial.c_str(), H5P_DEFAULT) <= 0) return false;
+    if (H5Oexists_by_name(file_id_, partial.c_str(), H5P_DEFAULT) <= 0) return false;
+    start = end + 1;
+  }
+  return true;
+}
+
+bool Reader::is_group(const std::string& object_path) const {
+  if (!exists(object_path)) return false;
+  H5O_info_t info;
+  if (H5Oget_info_by_name(file_id_, object_path.c_str(), &info, H5P_DEFAULT) < 0) return false;
+  return info.type == H5O_TYPE_GROUP;
+}
+
+bool Reader::is_dataset(const std::string& object_path) const {
+  if (!exists(object_path)) return false;
+  H5O_info_t info;
+  if (H5Oget_info_by_name(file_id_, object_path.c_str(), &info, H5P_DEFAULT) < 0) return false;
+  return info.type == H5O_TYPE_DATASET;
+}
+
+std::vector<std::string> Reader::children(const std::string& group_path) const {
+  if (!is_group(group_path)) fail(group_path, "missing group");
+  Handle group(H5Gopen2(file_id_, group_path.c_str(), H5P_DEFAULT));
+  if (!group.valid()) fail(group_path, "cannot open group");
+  H5G_info_t info;
+  if (H5Gget_info(group.get(), &info) < 0) fail(group_path, "cannot list group");
+  std::vector<std::string> names;
+  for (hsize_t i = 0; i < info.nlinks; ++i) {
+    const ssize_t length = H5Lget_name_by_idx(group.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i,
+                                              nullptr, 0, H5P_DEFAULT);
+    if (length < 0) fail(group_path, "cannot read a link name");
+    std::string name(static_cast<std::size_t>(length), '\0');
+    H5Lget_name_by_idx(group.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(),
+                       name.size() + 1, H5P_DEFAULT);
+    names.push_back(name);
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+DatasetInfo Reader::info(const std::string& dataset_path) const {
+  if (!exists(dataset_path)) fail(dataset_path, "missing dataset");
+  if (!is_dataset(dataset_path)) fail(dataset_path, "is a group, expected a dataset");
+  Handle dataset(H5Dopen2(file_id_, dataset_path.c_str(), H5P_DEFAULT));
+  if (!dataset.valid()) fail(dataset_path, "cannot open dataset");
+  Handle type(H5Dget_type(dataset.get()));
+  Handle space(H5Dget_space(dataset.get()));
+  if (!type.valid() || !space.valid()) fail(dataset_path, "cannot read type or shape");
+  DatasetInfo result;
+  result.dtype = dtype_of(type.get());
+  result.dtype_name = dtype_name_of(type.get());
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  if (rank < 0) fail(dataset_path, "cannot read shape");
+  std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
+  H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+  result.shape.assign(dims.begin(), dims.end());
+  return result;
+}
+
+namespace {
+template <typename T>
+std::vector<T> read_numeric(const Reader& reader, hid_t file_id, const std::string& path,
+                            DType expected, hid_t memory_type, std::vector<std::size_t>* shape) {
+  const DatasetInfo info = reader.info(path);
+  if (info.dtype != expected) {
+    reader.fail(path, "wrong dtype " + info.dtype_name + ", expected " +
+                          (expected == DType::float64 ? "float64" : "int64"));
+  }
+  std::vector<T> values(element_count(info.shape));
+  Handle dataset(H5Dopen2(file_id, path.c_str(), H5P_DEFAULT));
+  if (!values.empty() &&
+      H5Dread(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0) {
+    reader.fail(path, "cannot read data (truncated or corrupted file?)");
+  }
+  if (shape) *shape = info.shape;
+  return values;
+}
+}  // namespace
+
+std::vector<double> Reader::read_f64(const std::string& dataset_path,
+                                     std::vector<std::size_t>* shape) const {
+  std::vector<std::size_t> local_shape;
+  auto values = read_numeric<double>(*this, file_id_, dataset_path, DType::float64,
+                                     H5T_NATIVE_DOUBLE, &local_shape);
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (!std::isfinite(values[i])) {
+      std::ostringstream what;
+      what << "non-finite value " << values[i] << " at flat index " << i;
+      if (local_shape.size() == 2 && local_shape[1] > 0) {
+        what << " (row " << i / local_shape[1] << ", column " << i % local_shape[1] << ")";
+      }
+      fail(dataset_path, what.str());
+    }
+  }
+  if (shape) *shape = local_shape;
+  return values;
+}
+
+std::vector<std::int64_t> Reader::read_i64(const std::string& dataset_path,
+                                           std::vector<std::size_t>* shape) const {
+  return read_numeric<std::int64_t>(*this, file_id_, dataset_path, DType::int64,
+                                    H5T_NATIVE_INT64, shape);
+}
+
+namespace {
+void check_shape(const Reader& reader, const std::string& path,
+                 const std::vector<std::size_t>& shape, std::size_t rank,
+                 std::initializer_list<Extent> extents) {
+  bool ok = shape.size() == rank;
+  std::size_t d = 0;
+  for (const Extent& e : extents) {
+    if (ok && e && shape[d] != *e) ok = false;
+    ++d;
+  }
+  if (!ok) {
+    std::ostringstream expected;
+    expected << "(";
+    d = 0;
+    for (const Extent& e : extents) {
+      expected << (d ? "," : "") << (e ? std::to_string(*e) : std::string("*"));
+      ++d;
+    }
+    if (rank == 1) expected << ",";
+    expected << ")";
+    reader.fail(path, "wrong shape " + shape_text(shape) + ", expected " + expected.str());
+  }
+}
+
+template <typename T>
+void check_range(const Reader& reader, const std::string& path, const std::vector<T>& values,
+                 std::int64_t lower, std::int64_t upper) {
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (values[i] < lower || values[i] >= upper) {
+      reader.fail(path, "index " + std::to_string(values[i]) + " at flat index " +
+                            std::to_string(i) + " out of range [" + std::to_string(lower) + ", " +
+                            std::to_string(upper) + ")");
+    }
+  }
+}
+}  // namespace
+
+std::vector<double> Reader::read_vector(const std::string& dataset_path, Extent length) const {
+  std::vector<std::size_t> shape;
+  auto values = read_f64(dataset_path, &shape);
+  check_shape(*this, dataset_path, shape, 1, {length});
+  return values;
+}
+
+MatrixXdR Reader::read_matrix(const std::string& dataset_path, Extent rows, Extent cols) const {
+  std::vector<std::size_t> shape;
+  auto values = read_f64(dataset_path, &shape);
+  check_shape(*this, dataset_path, shape, 2, {rows, cols});
+  return Eigen::Map<MatrixXdR>(values.data(), static_cast<Eigen::Index>(shape[0]),
+                               static_cast<Eigen::Index>(shape[1]));
+}
+
+std::vector<std::int64_t> Reader::read_index_vector(const std::string& dataset_path,
+                                                    Extent length, std::int64_t lower,
+                                                    std::int64_t upper) const {
+  std::vector<std::size_t> shape;
+  auto values = read_i64(dataset_path, &shape);
+  check_shape(*this, dataset_path, shape, 1, {length});
+  check_range(*this, dataset_path, values, lower, upper);
+  return values;
+}
+
+MatrixXiR Reader::read_index_matrix(const std::string& dataset_path, Extent rows, Extent cols,
+                                    std::int64_t lower, std::int64_t upper) const {
+  std::vector<std::size_t> shape;
+  auto values = read_i64(dataset_path, &shape);
+  check_shape(*this, dataset_path, shape, 2, {rows, cols});
+  check_range(*this, dataset_path, values, lower, upper);
+  return Eigen::Map<MatrixXiR>(values.data(), static_cast<Eigen::Index>(shape[0]),
+                               static_cast<Eigen::Index>(shape[1]));
+}
+
+std::vector<std::string> Reader::read_strings(const std::string& dataset_path) const {
+  const DatasetInfo info = this->info(dataset_path);
+  if (info.dtype != DType::string) {
+    fail(dataset_path, "wrong dtype " + info.dtype_name + ", expected string");
+  }
+  if (info.shape.size() > 1) fail(dataset_path, "wrong shape " + shape_text(info.shape) + ", expected (n,)");
+  Handle dataset(H5Dopen2(file_id_, dataset_path.c_str(), H5P_DEFAULT));
+  Handle file_type(H5Dget_type(dataset.get()));
+  if (H5Tis_variable_str(file_type.get()) <= 0) fail(dataset_path, "expected variable-length strings");
+  Handle memory_type(string_type());
+  const std::size_t n = element_count(info.shape);
+  std::vector<char*> raw(n, nullptr);
+  if (n > 0 && H5Dread(dataset.get(), memory_type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT,
+                       raw.data()) < 0) {
+    fail(dataset_path, "cannot read strings");
+  }
+  std::vector<std::string> result;
+  for (char* s : raw) result.emplace_back(s ? s : "");
+  if (n > 0) {
+    Handle space(H5Dget_space(dataset.get()));
+    H5Dvlen_reclaim(memory_type.get(), space.get(), H5P_DEFAULT, raw.data());
+  }
+  return result;
+}
+
+bool Reader::has_attr(const std::string& object_path, const std::string& name) const {
+  if (!exists(object_path)) return false;
+  return H5Aexists_by_name(file_id_, object_path.c_str(), name.c_str(), H5P_DEFAULT) > 0;
+}
+
+std::vector<std::string> Reader::attr_names(const std::string& object_path) const {
+  if (!exists(object_path)) fail(object_path, "missing object");
+  H5O_info_t info;
+  if (H5Oget_info_by_name(file_id_, object_path.c_str(), &info, H5P_DEFAULT) < 0) {
+    fail(object_path, "cannot read object info");
+  }
+  std::vector<std::string> names;
+  for (hsize_t i = 0; i < info.num_attrs; ++i) {
+    const ssize_t length = H5Aget_name_by_idx(file_id_, object_path.c_str(), H5_INDEX_NAME,
+                                              H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT);
+    if (length < 0) fail(object_path, "cannot read an attribute name");
+    std::string name(static_cast<std::size_t>(length), '\0');
+    H5Aget_name_by_idx(file_id_, object_path.c_str(), H5_INDEX_NAME, H5_ITER_INC, i, name.data(),
+                       name.size() + 1, H5P_DEFAULT);
+    names.push_back(name);
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+namespace {
+Handle open_attr(const Reader& reader, hid_t file_id, const std::string& object_path,
+                 const std::string& name) {
+  if (!reader.has_attr(object_path, name)) reader.fail(object_path, "missing attribute '" + name + "'");
+  Handle attr(H5Aopen_by_name(file_id, object_path.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT));
+  if (!attr.valid()) reader.fail(object_path, "cannot open attribute '" + name + "'");
+  return attr;
+}
+
+std::size_t attr_count(hid_t attr) {
+  Handle space(H5Aget_space(attr));
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  if (rank <= 0) return 1;
+  std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
+  H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+  std::size_t n = 1;
+  for (hsize_t d : dims) n *= d;
+  return n;
+}
+}  // namespace
+
+DType Reader::attr_dtype(const std::string& object_path, const std::string& name) const {
+  Handle attr = open_attr(*this, file_id_, object_path, name);
+  Handle type(H5Aget_type(attr.get()));
+  return dtype_of(type.get());
+}
+
+std::string Reader::attr_string(const std::string& object_path, const std::string& name) const {
+  Handle attr = open_attr(*this, file_id_, object_path, name);
+  Handle type(H5Aget_type(attr.get()));
+  if (H5Tget_class(type.get()) != H5T_STRING) {
+    fail(object_path, "attribute '" + name + "' has dtype " + dtype_name_of(type.get()) +
+                          ", expected string");
+  }
+  if (attr_count(attr.get()) != 1) fail(object_path, "attribute '" + name + "' is not a scalar");
+  if (H5Tis_variable_str(type.get()) > 0) {
+    Handle memory_type(string_type());
+    char* raw = nullptr;
+    if (H5Aread(attr.get(), memory_type.get(), &raw) < 0) {
+      fail(object_path, "cannot read attribute '" + name + "'");
+    }
+    std::string value = raw ? raw : "";
+    Handle space(H5Aget_space(attr.get()));
+    H5Dvlen_reclaim(memory_type.get(), space.get(), H5P_DEFAULT, &raw);
+    return value;
+  }
+  // Fixed-length strings (written by h5py with np.bytes_ or by other tools) are accepted too.
+  const std::size_t size = H5Tget_size(type.get());
+  std::string value(size, '\0');
+  Handle memory_type(H5Tcopy(H5T_C_S1));
+  H5Tset_size(memory_type.get(), size);
+  if (H5Aread(attr.get(), memory_type.get(), value.data()) < 0) {
+    fail(object_path, "cannot read attribute '" + name + "'");
+  }
+  value.resize(std::min(value.size(), value.find('\0')));
+  return value;
+}
+
+double Reader::attr_f64(const std::string& object_path, const std::string& name) const {
+  Handle attr = open_attr(*this, file_id_, object_path, name);
+  Handle type(H5Aget_type(attr.get()));
+  const H5T_class_t cls = H5Tget_class(type.get());
+  if (cls != H5T_FLOAT && cls != H5T_INTEGER) {
+    fail(object_path, "attribute '" + name + "' has dtype " + dtype_name_of(type.get()) +
+                          ", expected a number");
+  }
+  if (attr_count(attr.get()) != 1) fail(object_path, "attribute '" + name + "' is not a scalar");
+  double value = 0;
+  if (H5Aread(attr.get(), H5T_NATIVE_DOUBLE, &value) < 0) {
+    fail(object_path, "cannot read attribute '" + name + "'");
+  }
+  if (!std::isfinite(value)) {
+    std::ostringstream what;
+    what << "attribute '" << name << "' is not finite (" << value << ")";
+    fail(object_path, what.str());
+  }
+  return value;
+}
+
+std::int64_t Reader::attr_i64(const std::string& object_path, const std::string& name) const {
+  Handle attr = open_attr(*this, file_id_, object_path, name);
+  Handle type(H5Aget_type(attr.get()));
+  if (H5Tget_class(type.get()) != H5T_INTEGER) {
+    fail(object_path, "attribute '" + name + "' has dtype " + dtype_name_of(type.get()) +
+                          ", expected an integer");
+  }
+  if (attr_count(attr.get()) != 1) fail(object_path, "attribute '" + name + "' is not a scalar");
+  std::int64_t value = 0;
+  if (H5Aread(attr.get(), H5T_NATIVE_INT64, &value) < 0) {
+    fail(object_path, "cannot read attribute '" + name + "'");
+  }
+  return value;
+}
+
+std::vector<double> Reader::attr_f64_vector(const std::string& object_path,
+                                            const std::string& name) const {
+  Handle attr = open_attr(*this, file_id_, object_path, name);
+  Handle type(H5Aget_type(attr.get()));
+  const H5T_class_t cls = H5Tget_class(type.get());
+  if (cls != H5T_FLOAT && cls != H5T_INTEGER) {
+    fail(object_path, "attribute '" + name + "' has dtype " + dtype_name_of(type.get()) +
+                          ", expected numbers");
+  }
+  std::vector<double> values(attr_count(attr.get()));
+  if (H5Aread(attr.get(), H5T_NATIVE_DOUBLE, values.data()) < 0) {
+    fail(object_path, "cannot read attribute '" + name + "'");
+  }
+  for (double v : values) {
+    if (!std::isfinite(v)) fail(object_path, "attribute '" + name + "' has a non-finite value");
+  }
+  return values;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Writer
+
+Writer::Writer(const std::filesystem::path& file) : path_(file) {
+  silence_hdf5_errors();
+  tmp_path_ = file;
+  tmp_path_ += ".tmp";
+  std::error_code ec;
+  std::filesystem::remove(tmp_path_, ec);
+  if (file.has_parent_path() && !file.parent_path().empty()) {
+    std::filesystem::create_directories(file.parent_path(), ec);
+  }
+  Handle fcpl(H5Pcreate(H5P_FILE_CREATE));
+  // Byte-reproducible output: the root group carries no modification times either.
+  H5Pset_obj_track_times(fcpl.get(), 0);
+  file_id_ = H5Fcreate(tmp_path_.c_str(), H5F_ACC_TRUNC, fcpl.get(), H5P_DEFAULT);
+  if (file_id_ < 0) {
+    throw InternalError(tmp_path_.string() + ": cannot create file (directory writable?)");
+  }
+}
+
+Writer::~Writer() {
+  if (file_id_ >= 0) H5Fclose(file_id_);
+  if (!committed_) {
+    std::error_code ec;
+    std::filesystem::remove(tmp_path_, ec);
+  }
+}
+
+void Writer::fail(const std::string& object_path, const std::string& what) const {
+  throw InternalError(path_.string() + ": " + object_path + ": " + what);
+}
+
+void Writer::create_group(const std::string& group_path) {
+  if (group_path.empty() || group_path == "/") return;
+  ensure_parents(group_path + "/x");
+}
+
+void Writer::ensure_parents(const std::string& object_path) {
+  std::size_t pos = 1;
+  while ((pos = object_path.find('/', pos)) != std::string::npos) {
+    const std::string partial = object_path.substr(0, pos);
+    if (H5Lexists(file_id_, partial.c_str(), H5P_DEFAULT) <= 0) {
+      Handle gcpl(H5Pcreate(H5P_GROUP_CREATE));
+      H5Pset_obj_track_times(gcpl.get(), 0);
+      Handle group(H5Gcreate2(file_id_, partial.c_str(), H5P_DEFAULT, gcpl.get(), H5P_DEFAULT));
+      if (!group.valid()) fail(partial, "cannot create group");
+    }
+    ++pos;
+  }
+}
+
+void Writer::write_raw(const std::string& dataset_path, bool is_float, const void* data,
+                       const std::vector<std::size_t>& shape, const std::string& units,
+                       const std::string& description) {
+  if (file_id_ < 0) fail(dataset_path, "file already committed");
+  ensure_parents(dataset_path);
+  std::vector<hsize_t> dims(shape.begin(), shape.end());
+  Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr));
+  Handle dcpl(H5Pcreate(H5P_DATASET_CREATE));
+  H5Pset_obj_track_times(dcpl.get(), 0);
+  const hid_t file_type = is_float ? H5T_IEEE_F64LE : H5T_STD_I64LE;
+  const hid_t memory_type = is_float ? H5T_NATIVE_DOUBLE : H5T_NATIVE_INT64;
+  Handle dataset(H5Dcreate2(file_id_, dataset_path.c_str(), file_type, space.get(), H5P_DEFAULT,
+                            dcpl.get(), H5P_DEFAULT));
+  if (!dataset.valid()) fail(dataset_path, "cannot create dataset (exists already?)");
+  if (element_count(shape) > 0 &&
+      H5Dwrite(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0) {
+    fail(dataset_path, "cannot write dataset (disk full?)");
+  }
+  dataset.reset();
+  set_attr(dataset_path, "units", units);
+  if (!description.empty()) set_attr(dataset_path, "description", description);
+}
+
+void Writer::write(const std::string& dataset_path, const std::vector<double>& values,
+                   const std::string& units, const std::string& description) {
+  write_raw(dataset_path, true, values.data(), {values.size()}, units, description);
+}
+
+void Writer::write(const std::string& dataset_path, const MatrixXdR& values,
+                   const std::string& units, const std::string& description) {
+  write_raw(dataset_path, true, values.data(),
+            {static_cast<std::size_t>(values.rows()), static_cast<std::size_t>(values.cols())},
+            units, description);
+}
+
+void Writer::write(const std::string& dataset_path, const std::vector<std::int64_t>& values,
+                   const std::string& units, const std::string& description) {
+  write_raw(dataset_path, false, values.data(), {values.size()}, units, description);
+}
+
+void Writer::write(const std::string& dataset_path, const MatrixXiR& values,
+                   const std::string& units, const std::string& description) {
+  write_raw(dataset_path, false, values.data(),
+            {static_cast<std::size_t>(values.rows()), static_cast<std::size_t>(values.cols())},
+            units, description);
+}
+
+void Writer::write_strings(const std::string& dataset_path, const std::vector<std::string>& values,
+                           const std::string& description) {
+  if (file_id_ < 0) fail(dataset_path, "file already committed");
+  ensure_parents(dataset_path);
+  hsize_t n = values.size();
+  Handle space(H5Screate_simple(1, &n, nullptr));
+  Handle type(string_type());
+  Handle dcpl(H5Pcreate(H5P_DATASET_CREATE));
+  H5Pset_obj_track_times(dcpl.get(), 0);
+  Handle dataset(H5Dcreate2(file_id_, dataset_path.c_str(), type.get(), space.get(), H5P_DEFAULT,
+                            dcpl.get(), H5P_DEFAULT));
+  if (!dataset.valid()) fail(dataset_path, "cannot create dataset (exists already?)");
+  std::vector<const char*> raw;
+  for (const auto& s : values) raw.push_back(s.c_str());
+  if (n > 0 && H5Dwrite(dataset.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, raw.data()) < 0) {
+    fail(dataset_path, "cannot write dataset");
+  }
+  dataset.reset();
+  set_attr(dataset_path, "units", std::string("1"));
+  if (!description.empty()) set_attr(dataset_path, "description", description);
+}
+
+namespace {
+void write_attr(hid_t file_id, const std::string& object_path, const std::string& name,
+                hid_t file_type, hid_t memory_type, hid_t space, const void* data,
+                const std::function<void(const std::string&)>& fail) {
+  if (H5Aexists_by_name(file_id, object_path.c_str(), name.c_str(), H5P_DEFAULT) > 0) {
+    H5Adelete_by_name(file_id, object_path.c_str(), name.c_str(), H5P_DEFAULT);
+  }
+  Handle attr(H5Acreate_by_name(file_id, object_path.c_str(), name.c_str(), file_type, space,
+                                H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  if (!attr.valid()) fail("cannot create attribute '" + name + "'");
+  if (H5Awrite(attr.get(), memory_type, data) < 0) fail("cannot write attribute '" + name + "'");
+}
+}  // namespace
+
+void Writer::set_attr(const std::string& object_path, const std::string& name,
+                      const std::string& value) {
+  if (object_path != "/" && H5Lexists(file_id_, object_path.c_str(), H5P_DEFAULT) <= 0) {
+    create_group(object_path);
+  }
+  Handle type(string_type());
+  Handle space(H5Screate(H5S_SCALAR));
+  const char* raw = value.c_str();
+  write_attr(file_id_, object_path, name, type.get(), type.get(), space.get(), &raw,
+             [&](const std::string& what) { fail(object_path, what); });
+}
+
+void Writer::set_attr(const std::string& object_path, const std::string& name, double value) {
+  if (object_path != "/" && H5Lexists(file_id_, object_path.c_str(), H5P_DEFAULT) <= 0) {
+    create_group(object_path);
+  }
+  Handle space(H5Screate(H5S_SCALAR));
+  write_attr(file_id_, object_path, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, space.get(), &value,
+             [&](const std::string& what) { fail(object_path, what); });
+}
+
+void Writer::set_attr(const std::string& object_path, const std::string& name,
+                      std::int64_t value) {
+  if (object_path != "/" && H5Lexists(file_id_, object_path.c_str(), H5P_DEFAULT) <= 0) {
+    create_group(object_path);
+  }
+  Handle space(H5Screate(H5S_SCALAR));
+  write_attr(file_id_, object_path, name, H5T_STD_I64LE, H5T_NATIVE_INT64, space.get(), &value,
+             [&](const std::string& what) { fail(object_path, what); });
+}
+
+void Writer::set_attr(const std::string& object_path, const std::string& name,
+                      const std::vector<double>& value) {
+  if (object_path != "/" && H5Lexists(file_id_, object_path.c_str(), H5P_DEFAULT) <= 0) {
+    create_group(object_path);
+  }
+  hsize_t n = value.size();
+  Handle space(H5Screate_simple(1, &n, nullptr));
+  write_attr(file_id_, object_path, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, space.get(),
+             value.data(), [&](const std::string& what) { fail(object_path, what); });
+}
+
+void Writer::commit() {
+  if (committed_) return;
+  if (H5Fflush(file_id_, H5F_SCOPE_GLOBAL) < 0 || H5Fclose(file_id_) < 0) {
+    file_id_ = -1;
+    fail("/", "cannot close file (disk full?)");
+  }
+  file_id_ = -1;
+  std::error_code ec;
+  std::filesystem::rename(tmp_path_, path_, ec);
+  if (ec) throw InternalError(path_.string() + ": cannot rename from " + tmp_path_.string() + ": " + ec.message());
+  committed_ = true;
+}
+
+}  // namespace tfmb::h5
