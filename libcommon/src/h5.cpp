@@ -406,6 +406,11 @@ DType Reader::attr_dtype(const std::string& object_path, const std::string& name
   return dtype_of(type.get());
 }
 
+std::size_t Reader::attr_size(const std::string& object_path, const std::string& name) const {
+  Handle attr = open_attr(*this, file_id_, object_path, name);
+  return attr_count(attr.get());
+}
+
 std::string Reader::attr_string(const std::string& object_path, const std::string& name) const {
   Handle attr = open_attr(*this, file_id_, object_path, name);
   Handle type(H5Aget_type(attr.get()));
@@ -589,6 +594,20 @@ void Writer::write(const std::string& dataset_path, const MatrixXiR& values,
   write_raw(dataset_path, false, values.data(),
             {static_cast<std::size_t>(values.rows()), static_cast<std::size_t>(values.cols())},
             units, description);
+}
+
+void Writer::write_array(const std::string& dataset_path, const std::vector<double>& values,
+                         const std::vector<std::size_t>& shape, const std::string& units,
+                         const std::string& description) {
+  if (element_count(shape) != values.size()) fail(dataset_path, "shape does not match data size");
+  write_raw(dataset_path, true, values.data(), shape, units, description);
+}
+
+void Writer::write_array(const std::string& dataset_path, const std::vector<std::int64_t>& values,
+                         const std::vector<std::size_t>& shape, const std::string& units,
+                         const std::string& description) {
+  if (element_count(shape) != values.size()) fail(dataset_path, "shape does not match data size");
+  write_raw(dataset_path, false, values.data(), shape, units, description);
 }
 
 void Writer::write_strings(const std::string& dataset_path, const std::vector<std::string>& values,

@@ -79,6 +79,8 @@ class Reader {
                                       const std::string& name) const;
   // The DType of an attribute (float64, int64, string or other).
   DType attr_dtype(const std::string& object_path, const std::string& name) const;
+  // Number of elements of an attribute (1 for a scalar).
+  std::size_t attr_size(const std::string& object_path, const std::string& name) const;
 
   // Throws BadInput("<file>: <object_path>: <what>").
   [[noreturn]] void fail(const std::string& object_path, const std::string& what) const;
@@ -115,6 +117,13 @@ class Writer {
              const std::string& units = "1", const std::string& description = "");
   void write_strings(const std::string& dataset_path, const std::vector<std::string>& values,
                      const std::string& description = "");
+  // Any rank: `values` holds the row-major data of an array of the given shape.
+  void write_array(const std::string& dataset_path, const std::vector<double>& values,
+                   const std::vector<std::size_t>& shape, const std::string& units,
+                   const std::string& description = "");
+  void write_array(const std::string& dataset_path, const std::vector<std::int64_t>& values,
+                   const std::vector<std::size_t>& shape, const std::string& units,
+                   const std::string& description = "");
   // Any Eigen dense float expression (column-major, fixed-size, ...).
   template <typename Derived>
   void write_eigen(const std::string& dataset_path, const Eigen::DenseBase<Derived>& values,

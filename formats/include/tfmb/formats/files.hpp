@@ -1,0 +1,98 @@
+// Reading and writing tfmb files: the common header and provenance, the mesh block shared by
+// every mesh-bearing kind, the XDMF 3 sidecar, and a generic document model used by tfmb-check,
+// by tests (round trips of every kind) and by `tfmb-check --example`.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "tfmb/common/h5.hpp"
+#include "tfmb/formats/schema.hpp"
+
+namespace tfmb::formats {
+
+struct Header {
+  std::string creator;               // e.g. "tfmb-mesh 0.1.0"
+  std::string geometry = "planar";   // or "axisymmetric"
+  double depth = 1.0;                // [m]
+};
+
+// Root attributes format, format_version (the schema's), creator, created, geometry, depth.
+// `created` is "not recorded" unless TFMB_RECORD_TIME=1, so identical runs give identical bytes.
+void write_header(h5::Writer& file, const std::string& kind, const Header& header);
+Header read_header(const h5::Reader& file);
+
+struct Provenance {
+  std::string command_line;
+  std::string settings;  // resolved settings, TOML text
+  std::vector<std::filesystem::path> inputs;
+};
+void write_provenance(h5::Writer& file, const Provenance& provenance);
+
+struct Boundary {
+  h5::MatrixXiR edges;   // (Ne,2) node ids, ordered head to tail
+  std::string kind;      // inflow, farfield, outflow, wall, slip_wall, symmetry, axis, solid_*
+  std::string flap;      // walls: the flap ("" if none)
+  std::string side;      // walls: inner, outer, end ("" if none)
+};
+
+struct Mesh {
+  h5::MatrixXdR points;     // (N,2) [m]
+  h5::MatrixXiR triangles;  // (Nt,3)
+  h5::MatrixXiR quads;      // (Nq,4)
+  std::map<std::string, std::vector<std::int64_t>> regions;  // cell ids (triangles first)
+  std::map<std::string, Boundary> boundaries;
+
+  std::size_t node_count() const { return static_cast<std::size_t>(points.rows()); }
+  std::size_t cell_count() const {
+    return static_cast<std::size_t>(triangles.rows() + quads.rows());
+  }
+};
+
+// Writes /mesh (and the derived XDMF topology stream).
+void write_mesh(h5::Writer& file, const Mesh& mesh);
+// Reads /mesh of a file already validated against its schema.
+Mesh read_mesh(const h5::Reader& file);
+
+// Writes "<file minus .h5>.xdmf" next to a committed mesh-bearing file: one Uniform grid with
+// Mixed topology, every /fields/point/* as a Node attribute and /fields/cell/* as Cell attribute.
+// Returns the sidecar path.
+std::filesystem::path write_xdmf_sidecar(const std::filesystem::path& h5_file);
+
+// Generic in-memory image of a file: every group, dataset and attribute.
+struct AttributeValue {
+  AttrType type = AttrType::string;
+  std::string text;
+  double number = 0.0;
+  std::int64_t integer = 0;
+  std::vector<double> numbers;
+  bool operator==(const AttributeValue&) const = default;
+};
+
+struct DatasetValue {
+  h5::DType dtype = h5::DType::float64;
+  std::vector<std::size_t> shape;
+  std::vector<double> floats;
+  std::vector<std::int64_t> integers;
+  std::vector<std::string> strings;
+  bool operator==(const DatasetValue&) const = default;
+};
+
+struct Document {
+  std::set<std::string> groups;
+  std::map<std::string, DatasetValue> datasets;
+  std::map<std::string, std::map<std::string, AttributeValue>> attributes;  // object -> name -> value
+  bool operator==(const Document&) const = default;
+};
+
+// Reads everything (no schema check beyond "finite floats").
+Document read_document(const h5::Reader& file);
+// Writes a document atomically (units attributes are taken from the document).
+void write_document(const Document& document, const std::filesystem::path& file);
+// A small valid document of a kind: what tfmb-check --example writes and the tests corrupt.
+Document example_document(const Schema& schema);
+
+}  // namespace tfmb::formats

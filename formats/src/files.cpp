@@ -1,0 +1,357 @@
+#include "tfmb/formats/files.hpp"
+
+#include <cstdlib>
+#include <ctime>
+#include <fstream>
+#include <functional>
+#include <sstream>
+
+#include "tfmb/common/errors.hpp"
+#include "tfmb/common/hash.hpp"
+
+namespace tfmb::formats {
+
+void write_header(h5::Writer& file, const std::string& kind, const Header& header) {
+  const Schema* schema = find_schema(kind);
+  if (!schema) throw InternalError("write_header: unknown file kind '" + kind + "'");
+  file.set_attr("/", "format", schema->format);
+  file.set_attr("/", "format_version", schema->version());
+  file.set_attr("/", "creator", header.creator);
+  std::string created = "not recorded";
+  if (const char* record = std::getenv("TFMB_RECORD_TIME"); record && std::string(record) == "1") {
+    const std::time_t now = std::time(nullptr);
+    char text[32];
+    std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+    created = text;
+  }
+  file.set_attr("/", "created", created);
+  bool geometric = false;
+  for (const auto& rule : schema->attributes) geometric |= rule.object_path == "/" && rule.name == "geometry";
+  if (geometric) {
+    file.set_attr("/", "geometry", header.geometry);
+    file.set_attr("/", "depth", header.depth);
+  }
+}
+
+Header read_header(const h5::Reader& file) {
+  Header header;
+  header.creator = file.attr_string("/", "creator");
+  if (file.has_attr("/", "geometry")) header.geometry = file.attr_string("/", "geometry");
+  if (file.has_attr("/", "depth")) header.depth = file.attr_f64("/", "depth");
+  return header;
+}
+
+void write_provenance(h5::Writer& file, const Provenance& provenance) {
+  file.create_group("/provenance");
+  file.set_attr("/provenance", "command_line", provenance.command_line);
+  file.set_attr("/provenance", "settings", provenance.settings);
+  std::vector<std::string> names, hashes;
+  for (const auto& input : provenance.inputs) {
+    names.push_back(input.string());
+    hashes.push_back(sha256_file(input));
+  }
+  file.write_strings("/provenance/input_files", names, "input files as given");
+  file.write_strings("/provenance/input_sha256", hashes, "SHA-256 of each input file");
+}
+
+namespace {
+std::vector<std::int64_t> xdmf_mixed_topology(const Mesh& mesh) {
+  std::vector<std::int64_t> stream;
+  stream.reserve(static_cast<std::size_t>(4 * mesh.triangles.rows() + 5 * mesh.quads.rows()));
+  for (Eigen::Index c = 0; c < mesh.triangles.rows(); ++c) {
+    stream.push_back(4);  // XDMF Mixed code of a triangle
+    for (int k = 0; k < 3; ++k) stream.push_back(mesh.triangles(c, k));
+  }
+  for (Eigen::Index c = 0; c < mesh.quads.rows(); ++c) {
+    stream.push_back(5);  // XDMF Mixed code of a quadrilateral
+    for (int k = 0; k < 4; ++k) stream.push_back(mesh.quads(c, k));
+  }
+  return stream;
+}
+}  // namespace
+
+void write_mesh(h5::Writer& file, const Mesh& mesh) {
+  h5::MatrixXiR triangles = mesh.triangles.rows() ? mesh.triangles : h5::MatrixXiR(0, 3);
+  h5::MatrixXiR quads = mesh.quads.rows() ? mesh.quads : h5::MatrixXiR(0, 4);
+  file.write("/mesh/points", mesh.points, "m", "node coordinates x, y");
+  file.write("/mesh/cells/triangle", triangles, "1", "node ids, counter-clockwise");
+  file.write("/mesh/cells/quad", quads, "1", "node ids, counter-clockwise");
+  file.write("/mesh/topology_xdmf_mixed", xdmf_mixed_topology(mesh), "1",
+             "derived: XDMF Mixed topology stream for the sidecar");
+  file.create_group("/mesh/regions");
+  for (const auto& [name, cells] : mesh.regions) file.write("/mesh/regions/" + name, cells, "1");
+  file.create_group("/mesh/boundaries");
+  for (const auto& [name, boundary] : mesh.boundaries) {
+    const std::string group = "/mesh/boundaries/" + name;
+    h5::MatrixXiR edges = boundary.edges.rows() ? boundary.edges : h5::MatrixXiR(0, 2);
+    file.write(group + "/edges", edges, "1", "node ids, ordered along the curve");
+    file.set_attr(group, "kind", boundary.kind);
+    if (!boundary.flap.empty()) file.set_attr(group, "flap", boundary.flap);
+    if (!boundary.side.empty()) file.set_attr(group, "side", boundary.side);
+  }
+}
+
+Mesh read_mesh(const h5::Reader& file) {
+  Mesh mesh;
+  mesh.points = file.read_matrix("/mesh/points", {}, 2);
+  const auto n = static_cast<std::int64_t>(mesh.points.rows());
+  mesh.triangles = file.read_index_matrix("/mesh/cells/triangle", {}, 3, 0, n);
+  mesh.quads = file.read_index_matrix("/mesh/cells/quad", {}, 4, 0, n);
+  const auto cells = static_cast<std::int64_t>(mesh.cell_count());
+  if (file.is_group("/mesh/regions")) {
+    for (const auto& name : file.children("/mesh/regions")) {
+      mesh.regions[name] = file.read_index_vector("/mesh/regions/" + name, {}, 0, cells);
+    }
+  }
+  for (const auto& name : file.children("/mesh/boundaries")) {
+    const std::string group = "/mesh/boundaries/" + name;
+    Boundary boundary;
+    boundary.edges = file.read_index_matrix(group + "/edges", {}, 2, 0, n);
+    boundary.kind = file.attr_string(group, "kind");
+    if (file.has_attr(group, "flap")) boundary.flap = file.attr_string(group, "flap");
+    if (file.has_attr(group, "side")) boundary.side = file.attr_string(group, "side");
+    mesh.boundaries[name] = std::move(boundary);
+  }
+  return mesh;
+}
+
+std::filesystem::path write_xdmf_sidecar(const std::filesystem::path& h5_file) {
+  h5::Reader file(h5_file);
+  std::filesystem::path sidecar = h5_file;
+  sidecar.replace_extension(".xdmf");
+  const std::string data_file = h5_file.filename().string();
+  const auto points = file.info("/mesh/points");
+  const auto triangles = file.info("/mesh/cells/triangle");
+  const auto quads = file.info("/mesh/cells/quad");
+  const auto topology = file.info("/mesh/topology_xdmf_mixed");
+  const std::size_t cells = triangles.shape.at(0) + quads.shape.at(0);
+
+  std::ostringstream xml;
+  xml << "<?xml version=\"1.0\" ?>\n"
+      << "<Xdmf Version=\"3.0\">\n  <Domain>\n"
+      << "    <Grid Name=\"" << h5_file.stem().string() << "\" GridType=\"Uniform\">\n"
+      << "      <Topology TopologyType=\"Mixed\" NumberOfElements=\"" << cells << "\">\n"
+      << "        <DataItem Dimensions=\"" << topology.shape.at(0)
+      << "\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">" << data_file
+      << ":/mesh/topology_xdmf_mixed</DataItem>\n      </Topology>\n"
+      << "      <Geometry GeometryType=\"XY\">\n"
+      << "        <DataItem Dimensions=\"" << points.shape.at(0)
+      << " 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << data_file
+      << ":/mesh/points</DataItem>\n      </Geometry>\n";
+  auto add_fields = [&](const std::string& group, const char* center, std::size_t expected_rows) {
+    if (!file.is_group(group)) return;
+    for (const auto& name : file.children(group)) {
+      const std::string path = group + "/" + name;
+      if (!file.is_dataset(path)) continue;
+      const auto info = file.info(path);
+      if (info.dtype != h5::DType::float64 || info.shape.empty() ||
+          info.shape[0] != expected_rows || info.shape.size() > 2) {
+        continue;  // not displayable on this grid (e.g. a history)
+      }
+      const std::size_t components = info.shape.size() == 2 ? info.shape[1] : 1;
+      const char* type = components == 1 ? "Scalar" : components == 3 ? "Vector" : "Matrix";
+      xml << "      <Attribute Name=\"" << name << "\" AttributeType=\"" << type
+          << "\" Center=\"" << center << "\">\n        <DataItem Dimensions=\"" << info.shape[0];
+      if (info.shape.size() == 2) xml << " " << components;
+      xml << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << data_file << ":" << path
+          << "</DataItem>\n      </Attribute>\n";
+    }
+  };
+  add_fields("/fields/point", "Node", points.shape.at(0));
+  add_fields("/fields/cell", "Cell", cells);
+  xml << "    </Grid>\n  </Domain>\n</Xdmf>\n";
+
+  std::filesystem::path tmp = sidecar;
+  tmp += ".tmp";
+  {
+    std::ofstream out(tmp);
+    out << xml.str();
+    if (!out) throw InternalError(tmp.string() + ": cannot write XDMF sidecar");
+  }
+  std::filesystem::rename(tmp, sidecar);
+  return sidecar;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Generic documents
+
+Document read_document(const h5::Reader& file) {
+  Document document;
+  std::function<void(const std::string&)> visit = [&](const std::string& object) {
+    for (const auto& name : file.attr_names(object)) {
+      AttributeValue value;
+      switch (file.attr_dtype(object, name)) {
+        case h5::DType::string:
+          value.type = AttrType::string;
+          value.text = file.attr_string(object, name);
+          break;
+        case h5::DType::int64:
+          value.type = AttrType::int64;
+          value.integer = file.attr_i64(object, name);
+          break;
+        case h5::DType::float64:
+          if (file.attr_size(object, name) == 1) {
+            value.type = AttrType::float64;
+            value.number = file.attr_f64(object, name);
+          } else {
+            value.type = AttrType::float64_vector;
+            value.numbers = file.attr_f64_vector(object, name);
+          }
+          break;
+        default: file.fail(object, "attribute '" + name + "' has an unsupported dtype");
+      }
+      document.attributes[object][name] = value;
+    }
+    if (file.is_dataset(object)) {
+      const auto info = file.info(object);
+      DatasetValue value;
+      value.dtype = info.dtype;
+      switch (info.dtype) {
+        case h5::DType::float64: value.floats = file.read_f64(object, &value.shape); break;
+        case h5::DType::int64: value.integers = file.read_i64(object, &value.shape); break;
+        case h5::DType::string:
+          value.strings = file.read_strings(object);
+          value.shape = info.shape;
+          break;
+        default: file.fail(object, "unsupported dtype " + info.dtype_name);
+      }
+      document.datasets[object] = std::move(value);
+      return;
+    }
+    document.groups.insert(object);
+    for (const auto& child : file.children(object)) {
+      visit(object == "/" ? "/" + child : object + "/" + child);
+    }
+  };
+  visit("/");
+  return document;
+}
+
+void write_document(const Document& document, const std::filesystem::path& path) {
+  h5::Writer file(path);
+  for (const auto& group : document.groups) file.create_group(group);
+  for (const auto& [object, value] : document.datasets) {
+    std::string units = "1";
+    if (auto it = document.attributes.find(object); it != document.attributes.end()) {
+      if (auto u = it->second.find("units"); u != it->second.end()) units = u->second.text;
+    }
+    switch (value.dtype) {
+      case h5::DType::float64: file.write_array(object, value.floats, value.shape, units); break;
+      case h5::DType::int64: file.write_array(object, value.integers, value.shape, units); break;
+      case h5::DType::string: file.write_strings(object, value.strings); break;
+      default: throw InternalError(object + ": unsupported dtype");
+    }
+  }
+  for (const auto& [object, attributes] : document.attributes) {
+    for (const auto& [name, value] : attributes) {
+      switch (value.type) {
+        case AttrType::string: file.set_attr(object, name, value.text); break;
+        case AttrType::float64: file.set_attr(object, name, value.number); break;
+        case AttrType::int64: file.set_attr(object, name, value.integer); break;
+        case AttrType::float64_vector: file.set_attr(object, name, value.numbers); break;
+      }
+    }
+  }
+  file.commit();
+}
+
+namespace {
+std::string concrete(const std::string& pattern) {
+  std::string path = pattern;
+  for (std::size_t pos; (pos = path.find('*')) != std::string::npos;) path.replace(pos, 1, "sample");
+  return path;
+}
+}  // namespace
+
+Document example_document(const Schema& schema) {
+  Document document;
+  document.groups.insert("/");
+  std::map<std::string, std::size_t> symbols;
+  auto extent = [&](const std::string& expression) -> std::size_t {
+    if (expression == "*") return 3;
+    std::size_t total = 0;
+    std::stringstream stream(expression);
+    std::string term;
+    while (std::getline(stream, term, '+')) {
+      if (!term.empty() && std::isdigit(static_cast<unsigned char>(term[0]))) {
+        total += std::stoull(term);
+      } else {
+        total += symbols.emplace(term, 4).first->second;
+      }
+    }
+    return total;
+  };
+  for (const AttributeRule& rule : schema.attributes) {
+    const std::string object = concrete(rule.object_path);
+    if (!document.datasets.count(object)) document.groups.insert(object);
+    AttributeValue value;
+    value.type = rule.type;
+    switch (rule.type) {
+      case AttrType::string:
+        value.text = rule.allowed.empty() ? "sample" : rule.allowed.front();
+        if (rule.name == "format_version") value.text = schema.version();
+        break;
+      case AttrType::float64:
+      case AttrType::int64: {
+        double number = 1.0;
+        if (rule.minimum && rule.maximum) number = 0.5 * (*rule.minimum + *rule.maximum);
+        else if (rule.minimum) number = *rule.minimum + 1.0;
+        else if (rule.maximum) number = *rule.maximum - 1.0;
+        value.number = number;
+        value.integer = static_cast<std::int64_t>(number);
+        break;
+      }
+      case AttrType::float64_vector: value.numbers = {1.0, 2.0, 3.0}; break;
+    }
+    document.attributes[object][rule.name] = value;
+  }
+  for (const DatasetRule& rule : schema.datasets) {
+    const std::string path = concrete(rule.path);
+    DatasetValue value;
+    value.dtype = rule.dtype;
+    for (const auto& e : rule.shape) {
+      if (e != "?") value.shape.push_back(extent(e));
+    }
+    std::size_t count = 1;
+    for (auto d : value.shape) count *= d;
+    if (rule.dtype == h5::DType::float64) {
+      for (std::size_t i = 0; i < count; ++i) value.floats.push_back(0.5 + 0.25 * static_cast<double>(i));
+    } else if (rule.dtype == h5::DType::int64) {
+      const std::size_t bound = rule.index_bound.empty() ? 1000 : extent(rule.index_bound);
+      for (std::size_t i = 0; i < count; ++i) {
+        value.integers.push_back(rule.index_lower + static_cast<std::int64_t>(i % bound));
+      }
+    } else {
+      for (std::size_t i = 0; i < count; ++i) value.strings.push_back("sample" + std::to_string(i));
+    }
+    document.groups.erase(path);
+    document.datasets[path] = value;
+    AttributeValue units;
+    units.text = rule.units == "*" ? "1" : rule.units;
+    document.attributes[path]["units"] = units;
+  }
+  // Parent groups of every object.
+  std::set<std::string> parents;
+  auto add_parents = [&](const std::string& path) {
+    for (std::size_t pos = path.find('/', 1); pos != std::string::npos; pos = path.find('/', pos + 1)) {
+      parents.insert(path.substr(0, pos));
+    }
+  };
+  for (const auto& [path, value] : document.datasets) add_parents(path);
+  for (const auto& group : document.groups) add_parents(group);
+  document.groups.insert(parents.begin(), parents.end());
+  // A mesh-bearing example gets a consistent XDMF topology stream.
+  if (schema.mesh_bearing) {
+    Mesh mesh;
+    const auto& tri = document.datasets["/mesh/cells/triangle"];
+    const auto& quad = document.datasets["/mesh/cells/quad"];
+    mesh.triangles = Eigen::Map<const h5::MatrixXiR>(tri.integers.data(), static_cast<Eigen::Index>(tri.shape[0]), 3);
+    mesh.quads = Eigen::Map<const h5::MatrixXiR>(quad.integers.data(), static_cast<Eigen::Index>(quad.shape[0]), 4);
+    auto& topology = document.datasets["/mesh/topology_xdmf_mixed"];
+    topology.integers = xdmf_mixed_topology(mesh);
+    topology.shape = {topology.integers.size()};
+  }
+  return document;
+}
+
+}  // namespace tfmb::formats
