@@ -1,0 +1,40 @@
+#include "bc.hpp"
+
+namespace tfmb::flow {
+
+std::string to_string(BcKind kind) {
+  switch (kind) {
+    case BcKind::stagnation_inflow: return "stagnation_inflow";
+    case BcKind::farfield: return "farfield";
+    case BcKind::pressure_outflow: return "pressure_outflow";
+    case BcKind::slip_wall: return "slip_wall";
+    case BcKind::symmetry: return "symmetry";
+    case BcKind::wall_adiabatic: return "wall_adiabatic";
+    case BcKind::wall_isothermal: return "wall_isothermal";
+  }
+  return "unknown";
+}
+
+State boundary_flux(const PerfectGas& gas, const BoundaryCondition& bc, const State& w, Vec2 n, int node) {
+  const double s = norm(n);
+  const Vec2 unit{n.x / s, n.y / s};
+  switch (bc.kind) {
+    case BcKind::stagnation_inflow:
+      return euler_flux(gas, stagnation_inflow_state(gas, bc, w, unit), n.x, n.y);
+    case BcKind::farfield: {
+      const State& inf = bc.node_freestream.empty() ? bc.freestream : bc.node_freestream[node];
+      return euler_flux(gas, farfield_state(gas, inf, w, unit), n.x, n.y);
+    }
+    case BcKind::pressure_outflow:
+      return euler_flux(gas, outflow_state(gas, bc.static_pressure, w, unit), n.x, n.y);
+    case BcKind::slip_wall:
+    case BcKind::symmetry:
+    case BcKind::wall_adiabatic:
+    case BcKind::wall_isothermal:
+      // No mass or energy crosses a wall; only the pressure acts (Blazek 2015, eq. 8.2).
+      return {0.0, w[3] * n.x, w[3] * n.y, 0.0};
+  }
+  return {};
+}
+
+}  // namespace tfmb::flow

@@ -1,0 +1,51 @@
+// Boundary conditions, imposed weakly as fluxes through the boundary faces of the dual cells
+// (Blazek 2015, ch. 8), except the no-slip velocity (and isothermal temperature), which is
+// imposed strongly on the wall nodes by the solver.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "gas.hpp"
+#include "mesh.hpp"
+
+namespace tfmb::flow {
+
+enum class BcKind {
+  stagnation_inflow,  // total pressure, total temperature and flow angle given
+  farfield,           // characteristic far field from a free-stream state (Riemann invariants)
+  pressure_outflow,   // static pressure if the face-normal Mach number < 1, else extrapolation
+  slip_wall,          // inviscid wall
+  symmetry,           // symmetry plane or axis (inviscid flux as slip wall, no shear)
+  wall_adiabatic,     // no-slip, zero heat flux
+  wall_isothermal,    // no-slip, fixed wall temperature
+};
+
+std::string to_string(BcKind kind);
+
+struct BoundaryCondition {
+  BcKind kind = BcKind::slip_wall;
+  double total_pressure = 0.0;     // stagnation_inflow [Pa]
+  double total_temperature = 0.0;  // stagnation_inflow [K]
+  double flow_angle = 0.0;         // stagnation_inflow: flow direction from +x [rad]
+  State freestream{};              // farfield: primitive (rho, u, v, p) [kg/m^3, m/s, m/s, Pa]
+  // farfield: optional free-stream state per mesh node (e.g. an exact solution); overrides
+  // freestream when not empty (size = number of nodes).
+  std::vector<State> node_freestream;
+  double static_pressure = 0.0;    // pressure_outflow [Pa]
+  double wall_temperature = 0.0;   // wall_isothermal [K]
+
+  bool no_slip() const { return kind == BcKind::wall_adiabatic || kind == BcKind::wall_isothermal; }
+};
+
+// Flux out of the domain through a boundary face with outward normal n (length = face measure),
+// given the primitive state w at the face's node.
+State boundary_flux(const PerfectGas& gas, const BoundaryCondition& bc, const State& w, Vec2 n,
+                    int node);
+
+// The state on the boundary side of each kind (primitive). Exposed for tests.
+State stagnation_inflow_state(const PerfectGas& gas, const BoundaryCondition& bc, const State& w, Vec2 unit_n);
+State farfield_state(const PerfectGas& gas, const State& w_inf, const State& w, Vec2 unit_n);
+State outflow_state(const PerfectGas& gas, double p_exit, const State& w, Vec2 unit_n);
+
+}  // namespace tfmb::flow

@@ -1,0 +1,40 @@
+// Laminar viscous fluxes of the Navier-Stokes equations on the dual faces, with the edge-normal
+// gradient correction of the averaged node gradients (Blazek 2015, eq. 5.73; Haselbacher and
+// Blazek 2000, AIAA J. 38:2094) and Sutherland's viscosity law (White 2006, eq. 1-36).
+#pragma once
+
+#include <array>
+
+#include "gas.hpp"
+#include "mesh.hpp"
+
+namespace tfmb::flow {
+
+struct ViscousModel {
+  double prandtl = 0.72;
+  double mu_ref = 1.716e-5;       // [Pa s] at t_ref
+  double t_ref = 273.15;          // [K]
+  double sutherland_s = 110.4;    // [K]
+  // Constant viscosity [Pa s] when > 0 (verification cases); Sutherland otherwise.
+  double constant_mu = 0.0;
+
+  double viscosity(double t) const {
+    if (constant_mu > 0.0) return constant_mu;
+    return mu_ref * std::pow(t / t_ref, 1.5) * (t_ref + sutherland_s) / (t + sutherland_s);
+  }
+};
+
+// Viscous flux through a face with normal n between nodes i and j (positions xi, xj, primitive
+// states wi, wj, primitive gradients gi, gj as produced by lsq_gradients). Returns the flux of
+// (0, momentum, energy) leaving node i. When jac_scale is non-null it receives the coefficient
+// c = mu |n| / L of the thin-shear approximation used in the implicit operator.
+State viscous_flux(const PerfectGas& gas, const ViscousModel& model, Vec2 xi, Vec2 xj, const State& wi,
+                   const State& wj, const std::array<double, 8>& gi, const std::array<double, 8>& gj,
+                   Vec2 n, double* jac_scale);
+
+// d Phi / dU for the thin-shear implicit operator F_v ~ c (Phi(U_j) - Phi(U_i)), with
+// Phi = (0, u, v, cp/Pr T + u_f u + v_f v) and (u_f, v_f) the face velocity.
+Block viscous_phi_jacobian(const PerfectGas& gas, const ViscousModel& model, const State& w, double u_face,
+                           double v_face);
+
+}  // namespace tfmb::flow

@@ -1,0 +1,55 @@
+// Block-sparse (4x4 BSR) matrix of the implicit operator, its block ILU(0) factorisation and a
+// right-preconditioned restarted GMRES (Saad 2003, Iterative Methods for Sparse Linear Systems,
+// alg. 6.10 and 10.4). Reductions use a fixed chunking, so results do not depend on the number
+// of threads.
+#pragma once
+
+#include <vector>
+
+#include "gas.hpp"
+
+namespace tfmb::flow {
+
+struct BlockSparseMatrix {
+  int num_rows = 0;
+  std::vector<int> row_ptr;   // size num_rows + 1
+  std::vector<int> col;       // block column ids, sorted within a row
+  std::vector<int> diag_pos;  // position of the diagonal block of each row
+  std::vector<double> val;    // 16 per block, row-major
+
+  double* block(int pos) { return val.data() + 16 * static_cast<std::size_t>(pos); }
+  const double* block(int pos) const { return val.data() + 16 * static_cast<std::size_t>(pos); }
+  int find(int row, int column) const;  // position or -1
+  void set_zero();
+  void multiply(const std::vector<double>& x, std::vector<double>& y) const;  // y = A x
+};
+
+// Pattern of a node graph given by its edges: diagonal plus both off-diagonals per edge.
+BlockSparseMatrix make_pattern(int num_nodes, const std::vector<std::array<int, 2>>& edges);
+
+class BlockIlu0 {
+ public:
+  // Factorises a copy of the matrix in the same pattern; diagonal blocks are stored inverted.
+  void factorize(const BlockSparseMatrix& a);
+  void apply(const std::vector<double>& b, std::vector<double>& x) const;  // x = (LU)^-1 b
+
+ private:
+  BlockSparseMatrix lu_;
+};
+
+struct GmresResult {
+  int iterations = 0;
+  double relative_residual = 0.0;
+};
+
+// Solves A x = b to ||b - A x|| <= rel_tol ||b|| or max_iterations, starting from x = 0.
+GmresResult gmres(const BlockSparseMatrix& a, const BlockIlu0& precond, const std::vector<double>& b,
+                  std::vector<double>& x, double rel_tol, int restart, int max_iterations);
+
+// Deterministic dot product (fixed chunk partition, ordered sum of chunk sums).
+double dot_product(const std::vector<double>& a, const std::vector<double>& b);
+
+// Inverse of a 4x4 block by Gauss-Jordan with partial pivoting. Returns false if singular.
+bool invert_block(const double* a, double* inverse);
+
+}  // namespace tfmb::flow

@@ -1,0 +1,47 @@
+// In-memory mixed triangle/quad mesh of a 2D flow domain, the input of the median-dual
+// construction. Kept free of any file format: the executable fills it from flowmesh.h5,
+// the tests fill it from the generators in mesh_generate.hpp.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace tfmb::flow {
+
+struct Vec2 {
+  double x = 0.0;
+  double y = 0.0;
+};
+inline Vec2 operator+(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
+inline Vec2 operator-(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
+inline Vec2 operator*(double s, Vec2 a) { return {s * a.x, s * a.y}; }
+inline double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
+inline double norm(Vec2 a) { return std::sqrt(a.x * a.x + a.y * a.y); }
+
+// One tagged boundary curve. Edges are node pairs ordered along the curve (edge k ends where
+// edge k+1 starts), so wall traces come out ordered without a search.
+struct BoundaryCurve {
+  std::string name;
+  std::vector<std::array<int, 2>> edges;
+};
+
+struct Mesh {
+  std::vector<Vec2> points;                 // [m]
+  std::vector<std::array<int, 3>> triangles;  // 0-based node ids, either orientation
+  std::vector<std::array<int, 4>> quads;      // 0-based node ids, either orientation
+  std::vector<BoundaryCurve> boundaries;
+
+  int num_points() const { return static_cast<int>(points.size()); }
+  int num_cells() const { return static_cast<int>(triangles.size() + quads.size()); }
+  // Index into boundaries, or -1 when no curve has that name.
+  int boundary_index(std::string_view name) const;
+};
+
+// Checks node ids, degenerate cells, and that the boundary curves cover exactly the edges that
+// belong to one cell. Throws std::invalid_argument naming the first problem found.
+void check_mesh(const Mesh& mesh);
+
+}  // namespace tfmb::flow

@@ -1,0 +1,450 @@
+#include "solver.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "flux_roe.hpp"
+#include "limiter.hpp"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace tfmb::flow {
+
+namespace {
+
+// Sets the OpenMP thread count of the calling thread for one solver call, then restores it.
+class ScopedThreads {
+ public:
+  explicit ScopedThreads(int threads) {
+#ifdef _OPENMP
+    previous_ = omp_get_max_threads();
+    omp_set_num_threads(std::max(threads, 1));
+#else
+    (void)threads;
+#endif
+  }
+  ~ScopedThreads() {
+#ifdef _OPENMP
+    omp_set_num_threads(previous_);
+#endif
+  }
+  ScopedThreads(const ScopedThreads&) = delete;
+  ScopedThreads& operator=(const ScopedThreads&) = delete;
+
+ private:
+  int previous_ = 1;
+};
+
+inline void add_block(double* target, const Block& b, double s) {
+  for (int k = 0; k < 16; ++k) target[k] += s * b[k];
+}
+
+}  // namespace
+
+FlowSolver::FlowSolver(const Mesh& mesh, Geometry geometry, const PerfectGas& gas,
+                       std::vector<BoundaryCondition> bcs, const SolverSettings& settings)
+    : mesh_(mesh), gas_(gas), bcs_(std::move(bcs)), settings_(settings) {
+  check_mesh(mesh_);
+  if (bcs_.size() != mesh_.boundaries.size()) {
+    throw std::invalid_argument("flow: " + std::to_string(bcs_.size()) + " boundary conditions for " +
+                                std::to_string(mesh_.boundaries.size()) + " boundary curves");
+  }
+  if (settings_.viscous && geometry == Geometry::axisymmetric) {
+    throw std::invalid_argument("flow: viscous axisymmetric flow is not implemented yet");
+  }
+  dual_ = build_dual(mesh_, geometry);
+  lsq_ = build_lsq_gradient(dual_);
+  venkat_eps_ = make_venkat_epsilon(dual_, settings_.venkat_k, settings_.reference_state);
+  jac_ = make_pattern(dual_.num_nodes, dual_.edges);
+  edge_pos_ij_.resize(dual_.num_edges());
+  edge_pos_ji_.resize(dual_.num_edges());
+  for (int e = 0; e < dual_.num_edges(); ++e) {
+    edge_pos_ij_[e] = jac_.find(dual_.edges[e][0], dual_.edges[e][1]);
+    edge_pos_ji_[e] = jac_.find(dual_.edges[e][1], dual_.edges[e][0]);
+  }
+  // No-slip nodes: walls win over any other boundary meeting them at a corner.
+  wall_node_bc_.assign(dual_.num_nodes, -1);
+  for (int b = 0; b < static_cast<int>(bcs_.size()); ++b) {
+    if (!bcs_[b].no_slip()) continue;
+    if (!settings_.viscous) {
+      throw std::invalid_argument("flow: boundary '" + mesh_.boundaries[b].name +
+                                  "' is a no-slip wall but the solver is inviscid; use slip_wall");
+    }
+    for (const auto& e : mesh_.boundaries[b].edges) {
+      for (int node : e) {
+        if (wall_node_bc_[node] < 0 || bcs_[b].kind == BcKind::wall_isothermal) wall_node_bc_[node] = b;
+      }
+    }
+  }
+  const int n = dual_.num_nodes;
+  u_.assign(n, State{});
+  w_.assign(n, State{});
+  res_.assign(n, State{});
+  phi_.assign(n, State{1.0, 1.0, 1.0, 1.0});
+  grad_.assign(n, std::array<double, 8>{});
+  edge_flux_.assign(dual_.num_edges(), State{});
+  spectral_radius_.assign(n, 0.0);
+}
+
+void FlowSolver::set_uniform(const State& w) { set_primitive(std::vector<State>(dual_.num_nodes, w)); }
+
+void FlowSolver::set_primitive(const std::vector<State>& w) {
+  if (static_cast<int>(w.size()) != dual_.num_nodes) throw std::invalid_argument("flow: state size differs from mesh");
+  for (int i = 0; i < dual_.num_nodes; ++i) u_[i] = gas_.conservative(w[i]);
+  apply_strong_conditions(u_);
+  limiter_frozen_ = false;
+}
+
+std::vector<State> FlowSolver::primitive() const {
+  std::vector<State> w(u_.size());
+  for (std::size_t i = 0; i < u_.size(); ++i) w[i] = gas_.primitive(u_[i]);
+  return w;
+}
+
+void FlowSolver::apply_strong_conditions(std::vector<State>& u) const {
+  for (int i = 0; i < dual_.num_nodes; ++i) {
+    const int b = wall_node_bc_[i];
+    if (b < 0) continue;
+    const double rho = u[i][0];
+    const double p_internal = (gas_.gamma - 1.0) * (u[i][3] - 0.5 * (u[i][1] * u[i][1] + u[i][2] * u[i][2]) / rho);
+    u[i][1] = 0.0;
+    u[i][2] = 0.0;
+    u[i][3] = bcs_[b].kind == BcKind::wall_isothermal ? rho * gas_.cv() * bcs_[b].wall_temperature
+                                                       : p_internal / (gas_.gamma - 1.0);
+  }
+}
+
+bool FlowSolver::physical(const std::vector<State>& u) const {
+  for (const auto& s : u) {
+    const double rho = s[0];
+    const double p = (gas_.gamma - 1.0) * (s[3] - 0.5 * (s[1] * s[1] + s[2] * s[2]) / rho);
+    if (!(rho > 0.0) || !(p > 0.0) || !std::isfinite(p)) return false;
+  }
+  return true;
+}
+
+void FlowSolver::compute_residual(bool update_limiter) {
+  const int n = dual_.num_nodes;
+  const int ne = dual_.num_edges();
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) w_[i] = gas_.primitive(u_[i]);
+
+  const bool second = settings_.order >= 2;
+  if (second || settings_.viscous) lsq_gradients(dual_, lsq_, w_, grad_);
+  if (second && settings_.limiter && update_limiter) venkatakrishnan_limiter(dual_, w_, grad_, venkat_eps_, phi_);
+  const bool limit = settings_.limiter;
+
+#pragma omp parallel for schedule(static)
+  for (int e = 0; e < ne; ++e) {
+    const int i = dual_.edges[e][0];
+    const int j = dual_.edges[e][1];
+    const Vec2 n_e = dual_.edge_normal[e];
+    State wl = w_[i];
+    State wr = w_[j];
+    if (second) {
+      // reconstruction to the edge midpoint (Blazek 2015, eq. 5.57)
+      const Vec2 half = 0.5 * (dual_.coords[j] - dual_.coords[i]);
+      for (int v = 0; v < 4; ++v) {
+        const double pl = limit ? phi_[i][v] : 1.0;
+        const double pr = limit ? phi_[j][v] : 1.0;
+        wl[v] += pl * (grad_[i][2 * v] * half.x + grad_[i][2 * v + 1] * half.y);
+        wr[v] -= pr * (grad_[j][2 * v] * half.x + grad_[j][2 * v + 1] * half.y);
+      }
+      if (!(wl[0] > 0.0 && wl[3] > 0.0)) wl = w_[i];
+      if (!(wr[0] > 0.0 && wr[3] > 0.0)) wr = w_[j];
+    }
+    State f = roe_flux(gas_, wl, wr, n_e.x, n_e.y, settings_.entropy_fix);
+    if (settings_.viscous) {
+      const State fv = viscous_flux(gas_, settings_.viscosity, dual_.coords[i], dual_.coords[j], w_[i], w_[j],
+                                    grad_[i], grad_[j], dual_.edge_normal_planar[e], nullptr);
+      for (int v = 0; v < 4; ++v) f[v] -= fv[v];
+    }
+    edge_flux_[e] = f;
+  }
+
+  const auto& inc = dual_.node_edges;
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    State r{};
+    double lambda = 0.0;
+    const double ci = gas_.sound_speed(w_[i]);
+    for (int k = inc.offsets[i]; k < inc.offsets[i + 1]; ++k) {
+      const int e = inc.edge[k];
+      const double s = inc.sign[k];
+      for (int v = 0; v < 4; ++v) r[v] += s * edge_flux_[e][v];
+      const int j = inc.neighbour[k];
+      const Vec2 n_e = dual_.edge_normal[e];
+      const double vn = 0.5 * ((w_[i][1] + w_[j][1]) * n_e.x + (w_[i][2] + w_[j][2]) * n_e.y);
+      const double c = 0.5 * (ci + gas_.sound_speed(w_[j]));
+      lambda += std::abs(vn) + c * norm(n_e);  // Blazek 2015, eq. 6.21
+      if (settings_.viscous) {
+        // viscous spectral radius (Blazek 2015, eq. 6.22)
+        const double mu = settings_.viscosity.viscosity(gas_.temperature(w_[i]));
+        const double sn = norm(dual_.edge_normal_planar[e]);
+        lambda += std::max(4.0 / 3.0, gas_.gamma / settings_.viscosity.prandtl) * mu / w_[i][0] * sn * sn /
+                  dual_.area[i];
+      }
+    }
+    res_[i] = r;
+    spectral_radius_[i] = lambda;
+  }
+
+  for (const auto& face : dual_.boundary_faces) {
+    const State& w = w_[face.node];
+    const State f = boundary_flux(gas_, bcs_[face.curve], w, face.normal, face.node);
+    for (int v = 0; v < 4; ++v) res_[face.node][v] += f[v];
+    const double vn = w[1] * face.normal.x + w[2] * face.normal.y;
+    spectral_radius_[face.node] += std::abs(vn) + gas_.sound_speed(w) * norm(face.normal);
+  }
+
+  if (dual_.geometry == Geometry::axisymmetric) {
+    // pressure source of the radial momentum equation, integral of p dA over the dual cell
+    for (int i = 0; i < n; ++i) res_[i][2] -= w_[i][3] * dual_.area[i];
+  }
+}
+
+std::vector<State> FlowSolver::residual() {
+  const ScopedThreads threads(settings_.threads);
+  compute_residual(true);
+  return res_;
+}
+
+State FlowSolver::residual_norm() const {
+  State s{};
+  for (int i = 0; i < dual_.num_nodes; ++i) {
+    const bool wall = wall_node_bc_[i] >= 0;
+    for (int v = 0; v < 4; ++v) {
+      if (wall && v > 0 && v < 3) continue;
+      if (wall && v == 3 && bcs_[wall_node_bc_[i]].kind == BcKind::wall_isothermal) continue;
+      const double r = res_[i][v] / dual_.volume[i];
+      s[v] += r * r;
+    }
+  }
+  for (int v = 0; v < 4; ++v) s[v] = std::sqrt(s[v] / dual_.num_nodes);
+  return s;
+}
+
+void FlowSolver::assemble_jacobian(const std::vector<double>& diag_scale) {
+  jac_.set_zero();
+  const int ne = dual_.num_edges();
+  const bool viscous = settings_.viscous;
+#pragma omp parallel for schedule(static)
+  for (int e = 0; e < ne; ++e) {
+    const int i = dual_.edges[e][0];
+    const int j = dual_.edges[e][1];
+    const Vec2 n_e = dual_.edge_normal[e];
+    RoeFluxJacobians jac;
+    roe_flux(gas_, w_[i], w_[j], n_e.x, n_e.y, settings_.entropy_fix, &jac);
+    if (viscous) {
+      double c = 0.0;
+      viscous_flux(gas_, settings_.viscosity, dual_.coords[i], dual_.coords[j], w_[i], w_[j], grad_[i], grad_[j],
+                   dual_.edge_normal_planar[e], &c);
+      const double uf = 0.5 * (w_[i][1] + w_[j][1]);
+      const double vf = 0.5 * (w_[i][2] + w_[j][2]);
+      // F = F_c - c (Phi_j - Phi_i)
+      add_block(jac.d_left.data(), viscous_phi_jacobian(gas_, settings_.viscosity, w_[i], uf, vf), c);
+      add_block(jac.d_right.data(), viscous_phi_jacobian(gas_, settings_.viscosity, w_[j], uf, vf), -c);
+    }
+    // R_i += F, R_j -= F
+    double* bij = jac_.block(edge_pos_ij_[e]);
+    double* bji = jac_.block(edge_pos_ji_[e]);
+    for (int k = 0; k < 16; ++k) {
+      bij[k] = jac.d_right[k];
+      bji[k] = -jac.d_left[k];
+    }
+  }
+  // Diagonal: conservation makes dR_i/dU_i = -sum_j dR_j/dU_i over the edges of i.
+  const auto& inc = dual_.node_edges;
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < dual_.num_nodes; ++i) {
+    double* d = jac_.block(jac_.diag_pos[i]);
+    for (int k = inc.offsets[i]; k < inc.offsets[i + 1]; ++k) {
+      const int e = inc.edge[k];
+      const double* b = jac_.block(inc.sign[k] > 0 ? edge_pos_ji_[e] : edge_pos_ij_[e]);
+      for (int m = 0; m < 16; ++m) d[m] -= b[m];
+    }
+    for (int m = 0; m < 4; ++m) d[5 * m] += diag_scale[i];
+  }
+  // Boundary fluxes: forward differences in the conservative variables of the face node.
+  for (const auto& face : dual_.boundary_faces) {
+    const BoundaryCondition& bc = bcs_[face.curve];
+    double* d = jac_.block(jac_.diag_pos[face.node]);
+    const State& u0 = u_[face.node];
+    const State f0 = boundary_flux(gas_, bc, w_[face.node], face.normal, face.node);
+    for (int c = 0; c < 4; ++c) {
+      State up = u0;
+      const double scale = (c == 1 || c == 2) ? std::sqrt(u0[0] * u0[3]) : 0.0;  // momentum scale rho*c
+      const double h = 1e-7 * (std::abs(u0[c]) + scale);
+      up[c] += h;
+      const State f1 = boundary_flux(gas_, bc, gas_.primitive(up), face.normal, face.node);
+      for (int r = 0; r < 4; ++r) d[4 * r + c] += (f1[r] - f0[r]) / h;
+    }
+  }
+  if (dual_.geometry == Geometry::axisymmetric) {
+    const double g1 = gas_.gamma - 1.0;
+    for (int i = 0; i < dual_.num_nodes; ++i) {
+      const State& w = w_[i];
+      double* d = jac_.block(jac_.diag_pos[i]);
+      const double a = dual_.area[i];
+      // d p / d U (Blazek 2015, eq. A.4)
+      d[8] -= a * g1 * 0.5 * (w[1] * w[1] + w[2] * w[2]);
+      d[9] -= a * -g1 * w[1];
+      d[10] -= a * -g1 * w[2];
+      d[11] -= a * g1;
+    }
+  }
+  // Strong no-slip rows: the update of the wall velocity (and temperature) is fixed.
+  for (int i = 0; i < dual_.num_nodes; ++i) {
+    const int b = wall_node_bc_[i];
+    if (b < 0) continue;
+    const bool iso = bcs_[b].kind == BcKind::wall_isothermal;
+    for (int p = jac_.row_ptr[i]; p < jac_.row_ptr[i + 1]; ++p) {
+      double* blk = jac_.block(p);
+      for (int r = 1; r < (iso ? 4 : 3); ++r) {
+        for (int c = 0; c < 4; ++c) blk[4 * r + c] = 0.0;
+      }
+    }
+    double* d = jac_.block(jac_.diag_pos[i]);
+    d[5] = 1.0;
+    d[10] = 1.0;
+    if (iso) {
+      d[12] = -gas_.cv() * bcs_[b].wall_temperature;
+      d[15] = 1.0;
+    }
+  }
+}
+
+SolveReport FlowSolver::solve() {
+  const ScopedThreads threads(settings_.threads);
+  using clock = std::chrono::steady_clock;
+  const auto start = clock::now();
+  SolveReport report;
+  const int n = dual_.num_nodes;
+  std::vector<double> rhs(4 * static_cast<std::size_t>(n)), du(4 * static_cast<std::size_t>(n));
+  std::vector<double> diag_scale(n);
+  std::vector<State> u_good = u_;
+  double cfl = settings_.cfl_start;
+  double cfl_scale = 1.0;
+  double r_max = 0.0;
+  limiter_frozen_ = false;
+
+  for (int it = 1; it <= settings_.max_iterations; ++it) {
+    compute_residual(!limiter_frozen_);
+    State rnorm = residual_norm();
+    if (!std::isfinite(rnorm[0] + rnorm[1] + rnorm[2] + rnorm[3])) {
+      // Non-physical residual: go back to the last good state with a smaller CFL.
+      u_ = u_good;
+      cfl_scale *= 0.1;
+      cfl = std::max(cfl * 0.1, 1e-3);
+      ++report.backoffs;
+      if (report.backoffs > 20) break;
+      continue;
+    }
+    r_max = std::max(r_max, rnorm[0]);
+    report.residual_drop = rnorm[0] / r_max;
+    if (settings_.limiter_freeze_drop > 0.0 && report.residual_drop < settings_.limiter_freeze_drop) {
+      limiter_frozen_ = true;
+    }
+    if (it > 1) {
+      const double ser = settings_.cfl_start * cfl_scale * std::pow(r_max / rnorm[0], settings_.ser_exponent);
+      cfl = std::min({ser, cfl * settings_.cfl_growth, settings_.cfl_max});
+      cfl = std::max(cfl, 1e-3);
+    }
+    IterationRecord rec;
+    rec.iteration = it;
+    rec.residual = rnorm;
+    rec.cfl = cfl;
+    if (report.residual_drop <= settings_.residual_drop && it > 1) {
+      report.converged = true;
+      rec.wall_time = std::chrono::duration<double>(clock::now() - start).count();
+      report.history.push_back(rec);
+      report.iterations = it - 1;
+      break;
+    }
+
+    for (int i = 0; i < n; ++i) diag_scale[i] = spectral_radius_[i] / cfl;  // V / dt
+    assemble_jacobian(diag_scale);
+    for (int i = 0; i < n; ++i) {
+      for (int v = 0; v < 4; ++v) rhs[4 * i + v] = -res_[i][v];
+      const int b = wall_node_bc_[i];
+      if (b >= 0) {
+        // strong conditions: drive momentum (and rho E - rho cv Tw) to zero
+        rhs[4 * i + 1] = -u_[i][1];
+        rhs[4 * i + 2] = -u_[i][2];
+        if (bcs_[b].kind == BcKind::wall_isothermal) {
+          rhs[4 * i + 3] = -(u_[i][3] - u_[i][0] * gas_.cv() * bcs_[b].wall_temperature);
+        }
+      }
+    }
+    ilu_.factorize(jac_);
+    const GmresResult lin = gmres(jac_, ilu_, rhs, du, settings_.linear_tolerance, settings_.gmres_restart,
+                                  settings_.gmres_max_iterations);
+    rec.linear_iterations = lin.iterations;
+    rec.linear_residual = lin.relative_residual;
+    report.linear_iterations += lin.iterations;
+
+    // Relaxation: limit the relative change of density and pressure.
+    double worst = 0.0;
+    for (int i = 0; i < n; ++i) {
+      State un = u_[i];
+      for (int v = 0; v < 4; ++v) un[v] += du[4 * i + v];
+      const State wn = gas_.primitive(un);
+      const State& wo = w_[i];
+      worst = std::max({worst, std::abs(wn[0] - wo[0]) / wo[0], std::abs(wn[3] - wo[3]) / wo[3]});
+    }
+    double omega = 1.0;
+    if (!std::isfinite(worst)) omega = 0.0;
+    else if (worst > settings_.max_relative_update) omega = settings_.max_relative_update / worst;
+    rec.relaxation = omega;
+    u_good = u_;
+    for (int i = 0; i < n; ++i) {
+      for (int v = 0; v < 4; ++v) u_[i][v] += omega * du[4 * i + v];
+    }
+    apply_strong_conditions(u_);
+    if (!physical(u_) || omega < 1e-3) {
+      u_ = u_good;
+      cfl_scale *= 0.1;
+      cfl *= 0.1;
+      ++report.backoffs;
+    } else if (omega < 0.5) {
+      // the linearisation was far off: slow the ramp down
+      cfl_scale *= 0.5;
+      cfl *= 0.5;
+    }
+    rec.wall_time = std::chrono::duration<double>(clock::now() - start).count();
+    report.history.push_back(rec);
+    report.iterations = it;
+    if (settings_.print_every > 0 && (it % settings_.print_every == 0 || it == 1)) {
+      std::fprintf(stderr, "iter %5d  res(rho) %.3e  drop %.2e  cfl %.2e  omega %.2f  lin %3d (%.1e)\n", it,
+                   rnorm[0], report.residual_drop, cfl, omega, lin.iterations, lin.relative_residual);
+    }
+    if (report.backoffs > 20) break;
+  }
+  if (!report.converged) {
+    compute_residual(!limiter_frozen_);
+    if (!physical(u_)) u_ = u_good;
+  }
+  report.wall_time = std::chrono::duration<double>(clock::now() - start).count();
+  return report;
+}
+
+BoundaryIntegral FlowSolver::boundary_integral(int curve) {
+  for (int i = 0; i < dual_.num_nodes; ++i) w_[i] = gas_.primitive(u_[i]);
+  BoundaryIntegral total;
+  for (const auto& face : dual_.boundary_faces) {
+    if (face.curve != curve) continue;
+    const State f = boundary_flux(gas_, bcs_[curve], w_[face.node], face.normal, face.node);
+    total.mass_flow += f[0];
+    total.force.x += f[1];
+    total.force.y += f[2];
+    total.energy_flow += f[3];
+  }
+  return total;
+}
+
+}  // namespace tfmb::flow

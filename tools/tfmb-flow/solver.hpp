@@ -1,0 +1,119 @@
+// Steady compressible flow solver on median-dual cells: second-order Roe fluxes with limited
+// least-squares reconstruction, implicit pseudo-time stepping with local time steps, a
+// switched-evolution-relaxation CFL ramp (Mulder and van Leer 1985) and a first-order
+// Jacobian solved by ILU(0)-preconditioned GMRES.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "bc.hpp"
+#include "flux_viscous.hpp"
+#include "gas.hpp"
+#include "gradient_lsq.hpp"
+#include "linear_solver.hpp"
+#include "mesh_dual.hpp"
+
+namespace tfmb::flow {
+
+struct SolverSettings {
+  int order = 2;                  // 1 or 2 (spatial accuracy of the convective fluxes)
+  double entropy_fix = 0.1;       // Harten delta as a fraction of the sound speed
+  bool limiter = true;            // Venkatakrishnan limiter on the reconstruction
+  double venkat_k = 5.0;          // limiter smoothness constant K
+  // Freeze the limiter once the density residual has dropped by this factor (0: never); stops
+  // limiter chatter from stalling convergence near shocks.
+  double limiter_freeze_drop = 1e-4;
+  State reference_state{1.0, 1.0, 1.0, 1.0};  // rho, |u|, |u|, p scales for the limiter
+  double cfl_start = 5.0;
+  double cfl_max = 1e5;
+  double cfl_growth = 2.0;        // largest CFL increase per iteration
+  double ser_exponent = 1.0;      // CFL = cfl_start * (R_max / R_n)^ser_exponent
+  int max_iterations = 500;
+  double residual_drop = 1e-8;    // converged when the density residual fell by this factor
+  double linear_tolerance = 0.05; // relative, per nonlinear iteration
+  int gmres_restart = 40;
+  int gmres_max_iterations = 80;
+  double max_relative_update = 0.3;  // largest relative change of rho or p per iteration
+  int print_every = 0;            // residual line on stderr every N iterations (0: silent)
+  bool viscous = false;
+  ViscousModel viscosity;
+  int threads = 1;                // OpenMP threads used inside solve() and residual()
+};
+
+struct IterationRecord {
+  int iteration = 0;
+  State residual{};        // RMS of residual / volume per equation
+  double cfl = 0.0;
+  double relaxation = 1.0; // fraction of the Newton update applied
+  int linear_iterations = 0;
+  double linear_residual = 0.0;
+  double wall_time = 0.0;  // since the start of solve() [s]
+};
+
+struct SolveReport {
+  bool converged = false;
+  int iterations = 0;
+  long linear_iterations = 0;
+  int backoffs = 0;            // CFL back-offs after non-physical states
+  double residual_drop = 1.0;  // final density residual / largest density residual
+  double wall_time = 0.0;      // [s]
+  std::vector<IterationRecord> history;
+};
+
+// Integrated boundary fluxes over one boundary curve, out of the domain; per unit depth
+// (planar) or per radian (axisymmetric).
+struct BoundaryIntegral {
+  double mass_flow = 0.0;  // [kg/s]
+  Vec2 force{};            // momentum flux plus pressure force on the boundary [N]
+  double energy_flow = 0.0;// [W]
+};
+
+class FlowSolver {
+ public:
+  // bcs[b] applies to mesh.boundaries[b].
+  FlowSolver(const Mesh& mesh, Geometry geometry, const PerfectGas& gas, std::vector<BoundaryCondition> bcs,
+             const SolverSettings& settings);
+
+  void set_uniform(const State& w);
+  void set_primitive(const std::vector<State>& w);
+  std::vector<State> primitive() const;
+  const std::vector<State>& conservative() const { return u_; }
+
+  SolveReport solve();
+
+  // Residual R(U) (flux balance, positive = net outflow) for the current state; per node.
+  std::vector<State> residual();
+  BoundaryIntegral boundary_integral(int curve);
+  // Node gradients of the primitive variables of the current state.
+  const std::vector<std::array<double, 8>>& gradients() const { return grad_; }
+
+  const DualMesh& dual() const { return dual_; }
+  const PerfectGas& gas() const { return gas_; }
+
+ private:
+  void compute_residual(bool update_limiter);
+  void assemble_jacobian(const std::vector<double>& diag_scale);
+  void apply_strong_conditions(std::vector<State>& u) const;
+  bool physical(const std::vector<State>& u) const;
+  State residual_norm() const;
+
+  Mesh mesh_;
+  DualMesh dual_;
+  PerfectGas gas_;
+  std::vector<BoundaryCondition> bcs_;
+  SolverSettings settings_;
+  LsqGradient lsq_;
+  std::vector<State> venkat_eps_;
+  std::vector<int> edge_pos_ij_, edge_pos_ji_;   // BSR positions of the off-diagonal blocks
+  std::vector<int> wall_node_bc_;                 // -1 or the no-slip bc index per node
+
+  std::vector<State> u_, w_, res_, phi_, edge_flux_;
+  std::vector<std::array<double, 8>> grad_;
+  std::vector<double> spectral_radius_;           // sum over faces of (|V.n| + c|n|) per node
+  BlockSparseMatrix jac_;
+  BlockIlu0 ilu_;
+  bool limiter_frozen_ = false;
+};
+
+}  // namespace tfmb::flow
