@@ -1,0 +1,52 @@
+// Layout of the "flow" file kind; prose spec in formats/flow.md.
+#include "schema_rules.hpp"
+
+namespace tfmb::formats::detail {
+
+Schema flow_schema() {
+  Schema s{"flow", "tfmb/flow", 1, 0,
+           "flow solution: node fields, wall traces, integrated thrust and mass flow", true, {}, {}};
+  add_root(s, true);
+  add_mesh(s);
+  s.datasets.push_back(f64("/fields/point/density", {"N"}, "kg/m^3", ""));
+  s.datasets.push_back(f64("/fields/point/velocity", {"N", "3"}, "m/s", "u, v, 0"));
+  s.datasets.push_back(f64("/fields/point/pressure", {"N"}, "Pa", "static pressure"));
+  s.datasets.push_back(f64("/fields/point/temperature", {"N"}, "K", "static temperature"));
+  s.datasets.push_back(f64("/fields/point/mach", {"N"}, "1", ""));
+  s.datasets.push_back(f64("/fields/point/nu_tilde", {"N"}, "m^2/s", "Spalart-Allmaras variable", false));
+  s.datasets.push_back(f64("/fields/point/eddy_viscosity", {"N"}, "Pa s", "", false));
+  s.datasets.push_back(f64("/fields/point/wall_distance", {"N"}, "m", "", false));
+  s.datasets.push_back(i64("/walls/*/node", {"n"}, "N", "mesh node of each trace point"));
+  s.datasets.push_back(f64("/walls/*/s", {"n"}, "m", "arc length along the wall"));
+  s.datasets.push_back(f64("/walls/*/x", {"n"}, "m", ""));
+  s.datasets.push_back(f64("/walls/*/y", {"n"}, "m", ""));
+  s.datasets.push_back(f64("/walls/*/pressure", {"n"}, "Pa", "wall static pressure"));
+  s.datasets.push_back(f64("/walls/*/temperature", {"n"}, "K", "wall temperature"));
+  s.datasets.push_back(f64("/walls/*/wall_shear", {"n"}, "Pa",
+                           "wall shear stress along the wall direction of increasing s"));
+  s.datasets.push_back(f64("/walls/*/heat_flux", {"n"}, "W/m^2", "into the wall"));
+  s.datasets.push_back(f64("/walls/*/heat_transfer_coefficient", {"n"}, "W/(m^2 K)", "", false));
+  s.datasets.push_back(f64("/walls/*/adiabatic_wall_temperature", {"n"}, "K", "", false));
+  s.attributes.push_back(nattr("/integrals", "mass_flow", "kg/(s m)", "per unit depth (planar)"));
+  s.attributes.push_back(nattr("/integrals", "thrust_x", "N/m", "per unit depth (planar)"));
+  s.attributes.push_back(nattr("/integrals", "thrust_y", "N/m", "per unit depth (planar)"));
+  s.attributes.push_back(nattr("/integrals", "thrust_angle", "deg", "atan2(thrust_y, thrust_x)"));
+  s.attributes.push_back(nattr("/integrals", "discharge_coefficient", "1",
+                               "mass flow over ideal (isentropic, sonic throat) mass flow", 0.0));
+  s.attributes.push_back(nattr("/conditions", "stagnation_pressure", "Pa", "", 0.0));
+  s.attributes.push_back(nattr("/conditions", "stagnation_temperature", "K", "", 0.0));
+  s.attributes.push_back(nattr("/conditions", "ambient_pressure", "Pa", "", 0.0));
+  s.attributes.push_back(nattr("/conditions", "gamma", "1", "", 1.0, 2.0));
+  s.attributes.push_back(nattr("/conditions", "gas_constant", "J/(kg K)", "", 0.0));
+  s.attributes.push_back(nattr("/convergence", "converged", "1", "1 if the criterion was met",
+                               0.0, 1.0, true, AttrType::int64));
+  s.attributes.push_back(sattr("/convergence", "criterion", "convergence criterion used"));
+  s.attributes.push_back(nattr("/convergence", "iterations", "1", "nonlinear iterations", 0.0,
+                               std::nullopt, true, AttrType::int64));
+  s.datasets.push_back(f64("/convergence/residual_history", {"I", "*"}, "1",
+                           "per iteration: L2 residual of each equation relative to the first"));
+  add_provenance(s);
+  return s;
+}
+
+}  // namespace tfmb::formats::detail

@@ -1,0 +1,26 @@
+// Layout of the "loads" file kind; prose spec in formats/loads.md.
+#include "schema_rules.hpp"
+
+namespace tfmb::formats::detail {
+
+Schema loads_schema() {
+  Schema s{"loads", "tfmb/loads", 1, 0, "distributed and nodal beam loads from the wall traces",
+           false, {}, {}};
+  add_root(s, true);
+  s.attributes.push_back(sattr("/", "method", "mapping method", {"linear", "conservative"}));
+  s.attributes.push_back(nattr("/flaps/*", "total_force", "N", "integral of the traces (x, y, z)",
+                               std::nullopt, std::nullopt, true, AttrType::float64_vector));
+  s.attributes.push_back(nattr("/flaps/*", "total_moment", "N m", "about the origin (x, y, z)",
+                               std::nullopt, std::nullopt, true, AttrType::float64_vector));
+  s.datasets.push_back(f64("/flaps/*/s", {"nn"}, "m", "arc length of each beam node"));
+  s.datasets.push_back(f64("/flaps/*/distributed_force", {"nn", "3"}, "N/m",
+                           "force per unit beam length at each node, over the flap width"));
+  s.datasets.push_back(f64("/flaps/*/distributed_moment", {"nn", "3"}, "N",
+                           "moment per unit beam length at each node"));
+  s.datasets.push_back(f64("/flaps/*/nodal_force", {"nn", "3"}, "N", "consistent nodal forces"));
+  s.datasets.push_back(f64("/flaps/*/nodal_moment", {"nn", "3"}, "N m", "consistent nodal moments"));
+  add_provenance(s);
+  return s;
+}
+
+}  // namespace tfmb::formats::detail
