@@ -1,5 +1,7 @@
 #include "bc.hpp"
 
+#include "flux_roe.hpp"
+
 namespace tfmb::flow {
 
 std::string to_string(BcKind kind) {
@@ -15,7 +17,8 @@ std::string to_string(BcKind kind) {
   return "unknown";
 }
 
-State boundary_flux(const PerfectGas& gas, const BoundaryCondition& bc, const State& w, Vec2 n, int node) {
+State boundary_flux(const PerfectGas& gas, const BoundaryCondition& bc, const State& w, Vec2 n, int node,
+                    double entropy_fix) {
   const double s = norm(n);
   const Vec2 unit{n.x / s, n.y / s};
   switch (bc.kind) {
@@ -23,10 +26,10 @@ State boundary_flux(const PerfectGas& gas, const BoundaryCondition& bc, const St
       return euler_flux(gas, stagnation_inflow_state(gas, bc, w, unit), n.x, n.y);
     case BcKind::farfield: {
       const State& inf = bc.node_freestream.empty() ? bc.freestream : bc.node_freestream[node];
-      return euler_flux(gas, farfield_state(gas, inf, w, unit), n.x, n.y);
+      return roe_flux(gas, w, farfield_state(gas, inf, w, unit), n.x, n.y, entropy_fix);
     }
     case BcKind::pressure_outflow:
-      return euler_flux(gas, outflow_state(gas, bc.static_pressure, w, unit), n.x, n.y);
+      return roe_flux(gas, w, outflow_state(gas, bc.static_pressure, w, unit), n.x, n.y, entropy_fix);
     case BcKind::slip_wall:
     case BcKind::symmetry:
     case BcKind::wall_adiabatic:

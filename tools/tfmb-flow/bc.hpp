@@ -39,9 +39,11 @@ struct BoundaryCondition {
 };
 
 // Flux out of the domain through a boundary face with outward normal n (length = face measure),
-// given the primitive state w at the face's node.
+// given the primitive state w at the face's node. Far field and outflow solve the Roe Riemann
+// problem between w and the characteristic boundary state (entropy_fix as in roe_flux), which
+// lets a start-up shock leave through a supersonic exit instead of sticking to the exit nodes.
 State boundary_flux(const PerfectGas& gas, const BoundaryCondition& bc, const State& w, Vec2 n,
-                    int node);
+                    int node, double entropy_fix);
 
 // The state on the boundary side of each kind (primitive). Exposed for tests.
 State stagnation_inflow_state(const PerfectGas& gas, const BoundaryCondition& bc, const State& w, Vec2 unit_n);

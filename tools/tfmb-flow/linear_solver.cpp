@@ -178,17 +178,35 @@ double dot_product(const std::vector<double>& a, const std::vector<double>& b) {
 
 GmresResult gmres(const BlockSparseMatrix& a, const BlockIlu0& m, const std::vector<double>& b,
                   std::vector<double>& x, double rel_tol, int restart, int max_iterations) {
+  GmresWorkspace workspace;
+  return gmres(a, m, b, x, rel_tol, restart, max_iterations, workspace);
+}
+
+GmresResult gmres(const BlockSparseMatrix& a, const BlockIlu0& m, const std::vector<double>& b,
+                  std::vector<double>& x, double rel_tol, int restart, int max_iterations, GmresWorkspace& ws) {
   const std::size_t n = b.size();
   x.assign(n, 0.0);
   GmresResult result;
   const double b_norm = std::sqrt(dot_product(b, b));
   if (b_norm == 0.0) return result;
-  std::vector<std::vector<double>> v(restart + 1, std::vector<double>(n));
-  std::vector<std::vector<double>> z(restart, std::vector<double>(n));
-  std::vector<double> h((restart + 1) * restart), cs(restart), sn(restart), g(restart + 1);
-  std::vector<double> w(n);
-  auto H = [&](int i, int j) -> double& { return h[i * restart + j]; };
-  std::vector<double> r = b;  // x = 0
+  ws.v.resize(restart + 1);
+  ws.z.resize(restart);
+  for (auto& vec : ws.v) vec.resize(n);
+  for (auto& vec : ws.z) vec.resize(n);
+  ws.h.assign((restart + 1) * restart, 0.0);
+  ws.cs.assign(restart, 0.0);
+  ws.sn.assign(restart, 0.0);
+  ws.g.assign(restart + 1, 0.0);
+  ws.w.resize(n);
+  auto& v = ws.v;
+  auto& z = ws.z;
+  auto& cs = ws.cs;
+  auto& sn = ws.sn;
+  auto& g = ws.g;
+  auto& w = ws.w;
+  auto H = [&](int i, int j) -> double& { return ws.h[i * restart + j]; };
+  std::vector<double>& r = ws.r;
+  r = b;  // x = 0
   double beta = b_norm;
   while (true) {
     for (std::size_t k = 0; k < n; ++k) v[0][k] = r[k] / beta;
@@ -228,7 +246,8 @@ GmresResult gmres(const BlockSparseMatrix& a, const BlockIlu0& m, const std::vec
       }
     }
     // x += Z y with H y = g (upper triangular)
-    std::vector<double> y(j);
+    std::vector<double>& y = ws.y;
+    y.assign(j, 0.0);
     for (int i = j - 1; i >= 0; --i) {
       double s = g[i];
       for (int k = i + 1; k < j; ++k) s -= H(i, k) * y[k];

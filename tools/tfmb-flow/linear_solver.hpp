@@ -42,7 +42,16 @@ struct GmresResult {
   double relative_residual = 0.0;
 };
 
+// Krylov basis storage, kept between calls so that no solve allocates.
+struct GmresWorkspace {
+  std::vector<std::vector<double>> v, z;
+  std::vector<double> h, cs, sn, g, w, r, y;
+};
+
 // Solves A x = b to ||b - A x|| <= rel_tol ||b|| or max_iterations, starting from x = 0.
+GmresResult gmres(const BlockSparseMatrix& a, const BlockIlu0& precond, const std::vector<double>& b,
+                  std::vector<double>& x, double rel_tol, int restart, int max_iterations,
+                  GmresWorkspace& workspace);
 GmresResult gmres(const BlockSparseMatrix& a, const BlockIlu0& precond, const std::vector<double>& b,
                   std::vector<double>& x, double rel_tol, int restart, int max_iterations);
 

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 
 #include "flux_roe.hpp"
@@ -196,7 +197,7 @@ void FlowSolver::compute_residual(bool update_limiter) {
 
   for (const auto& face : dual_.boundary_faces) {
     const State& w = w_[face.node];
-    const State f = boundary_flux(gas_, bcs_[face.curve], w, face.normal, face.node);
+    const State f = boundary_flux(gas_, bcs_[face.curve], w, face.normal, face.node, settings_.entropy_fix);
     for (int v = 0; v < 4; ++v) res_[face.node][v] += f[v];
     const double vn = w[1] * face.normal.x + w[2] * face.normal.y;
     spectral_radius_[face.node] += std::abs(vn) + gas_.sound_speed(w) * norm(face.normal);
@@ -275,13 +276,13 @@ void FlowSolver::assemble_jacobian(const std::vector<double>& diag_scale) {
     const BoundaryCondition& bc = bcs_[face.curve];
     double* d = jac_.block(jac_.diag_pos[face.node]);
     const State& u0 = u_[face.node];
-    const State f0 = boundary_flux(gas_, bc, w_[face.node], face.normal, face.node);
+    const State f0 = boundary_flux(gas_, bc, w_[face.node], face.normal, face.node, settings_.entropy_fix);
     for (int c = 0; c < 4; ++c) {
       State up = u0;
       const double scale = (c == 1 || c == 2) ? std::sqrt(u0[0] * u0[3]) : 0.0;  // momentum scale rho*c
       const double h = 1e-7 * (std::abs(u0[c]) + scale);
       up[c] += h;
-      const State f1 = boundary_flux(gas_, bc, gas_.primitive(up), face.normal, face.node);
+      const State f1 = boundary_flux(gas_, bc, gas_.primitive(up), face.normal, face.node, settings_.entropy_fix);
       for (int r = 0; r < 4; ++r) d[4 * r + c] += (f1[r] - f0[r]) / h;
     }
   }
@@ -331,6 +332,8 @@ SolveReport FlowSolver::solve() {
   double cfl = settings_.cfl_start;
   double cfl_scale = 1.0;
   double r_max = 0.0;
+  double r_min = std::numeric_limits<double>::infinity();
+  int last_minimum = 0;
   limiter_frozen_ = false;
 
   for (int it = 1; it <= settings_.max_iterations; ++it) {
@@ -347,7 +350,12 @@ SolveReport FlowSolver::solve() {
     }
     r_max = std::max(r_max, rnorm[0]);
     report.residual_drop = rnorm[0] / r_max;
-    if (settings_.limiter_freeze_drop > 0.0 && report.residual_drop < settings_.limiter_freeze_drop) {
+    if (rnorm[0] < r_min) {
+      r_min = rnorm[0];
+      last_minimum = it;
+    }
+    if ((settings_.limiter_freeze_drop > 0.0 && report.residual_drop < settings_.limiter_freeze_drop) ||
+        (settings_.limiter_stall_iterations > 0 && it - last_minimum > settings_.limiter_stall_iterations)) {
       limiter_frozen_ = true;
     }
     if (it > 1) {
@@ -383,7 +391,7 @@ SolveReport FlowSolver::solve() {
     }
     ilu_.factorize(jac_);
     const GmresResult lin = gmres(jac_, ilu_, rhs, du, settings_.linear_tolerance, settings_.gmres_restart,
-                                  settings_.gmres_max_iterations);
+                                  settings_.gmres_max_iterations, gmres_workspace_);
     rec.linear_iterations = lin.iterations;
     rec.linear_residual = lin.relative_residual;
     report.linear_iterations += lin.iterations;
@@ -438,7 +446,7 @@ BoundaryIntegral FlowSolver::boundary_integral(int curve) {
   BoundaryIntegral total;
   for (const auto& face : dual_.boundary_faces) {
     if (face.curve != curve) continue;
-    const State f = boundary_flux(gas_, bcs_[curve], w_[face.node], face.normal, face.node);
+    const State f = boundary_flux(gas_, bcs_[curve], w_[face.node], face.normal, face.node, settings_.entropy_fix);
     total.mass_flow += f[0];
     total.force.x += f[1];
     total.force.y += f[2];

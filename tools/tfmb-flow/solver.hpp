@@ -21,9 +21,11 @@ struct SolverSettings {
   double entropy_fix = 0.1;       // Harten delta as a fraction of the sound speed
   bool limiter = true;            // Venkatakrishnan limiter on the reconstruction
   double venkat_k = 5.0;          // limiter smoothness constant K
-  // Freeze the limiter once the density residual has dropped by this factor (0: never); stops
-  // limiter chatter from stalling convergence near shocks.
-  double limiter_freeze_drop = 1e-4;
+  // Freeze the limiter once the density residual has dropped by this factor (0: never), or when
+  // it has not reached a new minimum for limiter_stall_iterations; stops limiter chatter from
+  // stalling convergence near shocks (the frozen limiter is a fixed, valid scheme).
+  double limiter_freeze_drop = 1e-2;
+  int limiter_stall_iterations = 50;
   State reference_state{1.0, 1.0, 1.0, 1.0};  // rho, |u|, |u|, p scales for the limiter
   double cfl_start = 5.0;
   double cfl_max = 1e5;
@@ -113,6 +115,7 @@ class FlowSolver {
   std::vector<double> spectral_radius_;           // sum over faces of (|V.n| + c|n|) per node
   BlockSparseMatrix jac_;
   BlockIlu0 ilu_;
+  GmresWorkspace gmres_workspace_;
   bool limiter_frozen_ = false;
 };
 
