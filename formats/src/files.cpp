@@ -297,8 +297,11 @@ Document example_document(const Schema& schema) {
         if (rule.minimum && rule.maximum) number = 0.5 * (*rule.minimum + *rule.maximum);
         else if (rule.minimum) number = *rule.minimum + 1.0;
         else if (rule.maximum) number = *rule.maximum - 1.0;
-        value.number = number;
-        value.integer = static_cast<std::int64_t>(number);
+        if (rule.type == AttrType::int64) {
+          value.integer = static_cast<std::int64_t>(number);
+        } else {
+          value.number = number;
+        }
         break;
       }
       case AttrType::float64_vector: value.numbers = {1.0, 2.0, 3.0}; break;

@@ -54,6 +54,12 @@ std::vector<Match> expand(const h5::Reader& file, const std::string& pattern, bo
   return current;
 }
 
+std::string number_text(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
 bool is_number(const std::string& text) {
   return !text.empty() && std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
 }
@@ -188,8 +194,8 @@ void check_attribute(const h5::Reader& file, const AttributeRule& rule, const st
         if ((rule.minimum && value < *rule.minimum) || (rule.maximum && value > *rule.maximum)) {
           std::ostringstream what;
           what << "attribute '" << rule.name << "' = " << value << " outside ["
-               << (rule.minimum ? std::to_string(*rule.minimum) : "-inf") << ", "
-               << (rule.maximum ? std::to_string(*rule.maximum) : "inf") << "]";
+               << (rule.minimum ? number_text(*rule.minimum) : "-inf") << ", "
+               << (rule.maximum ? number_text(*rule.maximum) : "inf") << "]";
           add(what.str());
         }
         break;
@@ -337,8 +343,8 @@ std::string markdown_table(const Schema& schema) {
     }
     if (a.minimum || a.maximum) {
       std::ostringstream range;
-      range << "range [" << (a.minimum ? std::to_string(*a.minimum) : "-inf") << ", "
-            << (a.maximum ? std::to_string(*a.maximum) : "inf") << "]";
+      range << "range [" << (a.minimum ? number_text(*a.minimum) : "-inf") << ", "
+            << (a.maximum ? number_text(*a.maximum) : "inf") << "]";
       meaning += (meaning.empty() ? "" : "; ") + range.str();
     }
     out << "| `" << a.object_path << "` | @" << a.name << " | " << attr_type_text(a.type)
