@@ -1,0 +1,32 @@
+// Sparse direct solve of the Newton system (Eigen SparseLU, general: the tangent of spatial
+// rotations is unsymmetric away from equilibrium, FORMULATION.md sec. 2), with mechanism detection.
+#pragma once
+
+#include <Eigen/Sparse>
+#include <Eigen/SparseLU>
+#include <functional>
+#include <string>
+
+#include "tfmb/beam/assembly.hpp"
+
+namespace tfmb::beam {
+
+class NewtonLinearSolver {
+ public:
+  /// `name_of` names a global unknown for error messages.
+  explicit NewtonLinearSolver(std::function<std::string(int)> name_of) : name_of_(std::move(name_of)) {}
+  /// Solves K dx = -r. Throws ModelError naming the free unknowns if K is singular (mechanism or
+  /// redundant constraint).
+  Eigen::VectorXd solve(int n, const Triplets& k, const Eigen::VectorXd& r);
+  /// Message describing the null space of a singular matrix (dense analysis; small systems only).
+  std::string describe_singularity(const Eigen::SparseMatrix<double>& k) const;
+
+ private:
+  std::function<std::string(int)> name_of_;
+  Eigen::SparseMatrix<double> matrix_;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu_;
+  bool analysed_ = false;
+  Eigen::Index pattern_nnz_ = -1;
+};
+
+}  // namespace tfmb::beam

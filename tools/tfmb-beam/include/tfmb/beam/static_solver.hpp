@@ -1,0 +1,40 @@
+// Nonlinear static analysis: Newton-Raphson with load stepping and automatic cut-back
+// (FORMULATION.md sec. 3, "Statics").
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "tfmb/beam/assembly.hpp"
+
+namespace tfmb::beam {
+
+struct StaticOptions {
+  int initial_steps = 10;          // load steps to reach load factor 1 if nothing fails
+  int max_steps = 1000;            // including cut-back retries
+  int max_iterations = 30;         // Newton iterations per step
+  int max_cutbacks = 12;           // halvings of a step before giving up
+  double tolerance = 1e-10;        // ||residual|| <= tolerance * force scale
+  double final_load_factor = 1.0;
+  /// Called after every converged step with (load factor, state).
+  std::function<void(double, const State&)> on_step;
+};
+
+struct StaticResult {
+  bool converged = false;
+  double load_factor = 0.0;       // last converged load factor
+  int steps = 0;                  // converged steps
+  int iterations = 0;             // total Newton iterations
+  int cutbacks = 0;
+  State state;                    // last converged state
+};
+
+/// Solves from `initial` (usually assembly.initial_state()); never throws on non-convergence
+/// (result.converged = false with the last converged state), throws ModelError for mechanisms.
+StaticResult solve_static(const Assembly& assembly, const State& initial, const StaticOptions& options = {});
+
+/// One Newton solve at a fixed load factor; returns true on convergence. Updates `state`.
+bool newton_static(const Assembly& assembly, State& state, double load_factor, const StaticOptions& options,
+                   int& iterations);
+
+}  // namespace tfmb::beam

@@ -1,0 +1,71 @@
+#include "tfmb/beam/static_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "tfmb/beam/errors.hpp"
+#include "tfmb/beam/linear_solver.hpp"
+
+namespace tfmb::beam {
+
+bool newton_static(const Assembly& assembly, State& state, double load_factor, const StaticOptions& options,
+                   int& iterations) {
+  NewtonLinearSolver solver([&](int i) { return assembly.dof_name(i); });
+  Eigen::VectorXd r;
+  Triplets k;
+  double scale = 0.0;
+  const State start = state;
+  for (int it = 0; it < options.max_iterations; ++it) {
+    assembly.assemble(state, load_factor, r, &k, &scale);
+    ++iterations;
+    if (!r.allFinite()) break;
+    if (r.norm() <= options.tolerance * std::max(scale, 1e-300) && it > 0) return true;
+    const Eigen::VectorXd dx = solver.solve(assembly.size(), k, r);
+    assembly.apply_increment(state, dx);
+    // Converged on a tiny correction too (residual at round-off level of a stiff model).
+    if (it > 0 && dx.head(assembly.num_node_dofs()).norm() < 1e-14 * (1.0 + dx.size())) {
+      assembly.assemble(state, load_factor, r, nullptr, &scale);
+      if (r.norm() <= 1e3 * options.tolerance * std::max(scale, 1e-300)) return true;
+    }
+  }
+  state = start;
+  return false;
+}
+
+StaticResult solve_static(const Assembly& assembly, const State& initial, const StaticOptions& options) {
+  StaticResult res;
+  res.state = initial;
+  double step = options.final_load_factor / std::max(options.initial_steps, 1);
+  double lf = 0.0;
+  int cut = 0;
+  int easy = 0;
+  for (int attempt = 0; attempt < options.max_steps && lf < options.final_load_factor * (1 - 1e-14); ++attempt) {
+    const double target = std::min(lf + step, options.final_load_factor);
+    State trial = res.state;
+    int iters = 0;
+    const bool ok = newton_static(assembly, trial, target, options, iters);
+    res.iterations += iters;
+    if (ok) {
+      res.state = std::move(trial);
+      lf = target;
+      res.load_factor = lf;
+      ++res.steps;
+      cut = 0;
+      if (options.on_step) options.on_step(lf, res.state);
+      // Grow the step again after easy convergence.
+      if (iters <= 6 && ++easy >= 2) {
+        step *= 1.5;
+        easy = 0;
+      }
+    } else {
+      ++res.cutbacks;
+      easy = 0;
+      if (++cut > options.max_cutbacks) return res;
+      step *= 0.5;
+    }
+  }
+  res.converged = lf >= options.final_load_factor * (1 - 1e-14);
+  return res;
+}
+
+}  // namespace tfmb::beam
