@@ -107,8 +107,8 @@ DualMesh build_dual(const Mesh& mesh, Geometry geometry) {
       const Vec2 nc = segment_normal(m, pc, outward);
       const double wa = axi ? 0.5 * (pa.y + m.y) : 1.0;
       const double wc = axi ? 0.5 * (m.y + pc.y) : 1.0;
-      d.boundary_faces.push_back({a, b, k, wa * na});
-      d.boundary_faces.push_back({c, b, k, wc * nc});
+      d.boundary_faces.push_back({a, b, k, wa * na, 0.5 * (pa + m)});
+      d.boundary_faces.push_back({c, b, k, wc * nc, 0.5 * (m + pc)});
     }
   }
 

@@ -16,7 +16,8 @@ struct BoundaryFace {
   int node;          // the node owning the dual cell
   int curve;         // index into Mesh::boundaries
   int curve_edge;    // index of the edge along that curve
-  Vec2 normal;       // outward, length = face measure (see DualMesh::normals)
+  Vec2 normal;       // outward, length = face measure (see DualMesh::edge_normal)
+  Vec2 center;       // midpoint of the half edge [m]
 };
 
 // Node-to-edge incidence in CSR form; sign is +1 when the node is the first node of the edge

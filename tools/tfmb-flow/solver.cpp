@@ -82,6 +82,26 @@ FlowSolver::FlowSolver(const Mesh& mesh, Geometry geometry, const PerfectGas& ga
       }
     }
   }
+  fixed_node_.assign(dual_.num_nodes, 0);
+  fixed_u_.assign(dual_.num_nodes, State{});
+  {
+    std::vector<Vec2> normal_sum(dual_.num_nodes);
+    for (const auto& face : dual_.boundary_faces) {
+      if (bcs_[face.curve].kind == BcKind::farfield) normal_sum[face.node] = normal_sum[face.node] + face.normal;
+    }
+    for (const auto& face : dual_.boundary_faces) {
+      const BoundaryCondition& bc = bcs_[face.curve];
+      if (bc.kind != BcKind::farfield) continue;
+      const State& inf = bc.node_freestream.empty() ? bc.freestream : bc.node_freestream[face.node];
+      const Vec2 nsum = normal_sum[face.node];
+      const double vn = (inf[1] * nsum.x + inf[2] * nsum.y) / norm(nsum);
+      if (vn <= -gas_.sound_speed(inf)) {
+        fixed_node_[face.node] = 1;
+        fixed_u_[face.node] = gas_.conservative(inf);
+        wall_node_bc_[face.node] = -1;
+      }
+    }
+  }
   const int n = dual_.num_nodes;
   u_.assign(n, State{});
   w_.assign(n, State{});
@@ -109,6 +129,7 @@ std::vector<State> FlowSolver::primitive() const {
 
 void FlowSolver::apply_strong_conditions(std::vector<State>& u) const {
   for (int i = 0; i < dual_.num_nodes; ++i) {
+    if (fixed_node_[i]) u[i] = fixed_u_[i];
     const int b = wall_node_bc_[i];
     if (b < 0) continue;
     const double rho = u[i][0];
@@ -197,7 +218,18 @@ void FlowSolver::compute_residual(bool update_limiter) {
 
   for (const auto& face : dual_.boundary_faces) {
     const State& w = w_[face.node];
-    const State f = boundary_flux(gas_, bcs_[face.curve], w, face.normal, face.node, settings_.entropy_fix);
+    State wf = w;
+    if (second) {
+      // State at the middle of the half edge: makes the boundary flux integral exact for linear
+      // variations (e.g. the wall pressure on a curved wall), keeping the scheme second order.
+      const Vec2 r = face.center - dual_.coords[face.node];
+      for (int v = 0; v < 4; ++v) {
+        const double p = limit ? phi_[face.node][v] : 1.0;
+        wf[v] += p * (grad_[face.node][2 * v] * r.x + grad_[face.node][2 * v + 1] * r.y);
+      }
+      if (!(wf[0] > 0.0 && wf[3] > 0.0)) wf = w;
+    }
+    const State f = boundary_flux(gas_, bcs_[face.curve], wf, face.normal, face.node, settings_.entropy_fix);
     for (int v = 0; v < 4; ++v) res_[face.node][v] += f[v];
     const double vn = w[1] * face.normal.x + w[2] * face.normal.y;
     spectral_radius_[face.node] += std::abs(vn) + gas_.sound_speed(w) * norm(face.normal);
@@ -219,6 +251,7 @@ State FlowSolver::residual_norm() const {
   State s{};
   for (int i = 0; i < dual_.num_nodes; ++i) {
     const bool wall = wall_node_bc_[i] >= 0;
+    if (fixed_node_[i]) continue;
     for (int v = 0; v < 4; ++v) {
       if (wall && v > 0 && v < 3) continue;
       if (wall && v == 3 && bcs_[wall_node_bc_[i]].kind == BcKind::wall_isothermal) continue;
@@ -301,6 +334,12 @@ void FlowSolver::assemble_jacobian(const std::vector<double>& diag_scale) {
   }
   // Strong no-slip rows: the update of the wall velocity (and temperature) is fixed.
   for (int i = 0; i < dual_.num_nodes; ++i) {
+    if (fixed_node_[i]) {
+      for (int p = jac_.row_ptr[i]; p < jac_.row_ptr[i + 1]; ++p) std::fill(jac_.block(p), jac_.block(p) + 16, 0.0);
+      double* d = jac_.block(jac_.diag_pos[i]);
+      for (int m = 0; m < 4; ++m) d[5 * m] = 1.0;
+      continue;
+    }
     const int b = wall_node_bc_[i];
     if (b < 0) continue;
     const bool iso = bcs_[b].kind == BcKind::wall_isothermal;
@@ -378,7 +417,7 @@ SolveReport FlowSolver::solve() {
     for (int i = 0; i < n; ++i) diag_scale[i] = spectral_radius_[i] / cfl;  // V / dt
     assemble_jacobian(diag_scale);
     for (int i = 0; i < n; ++i) {
-      for (int v = 0; v < 4; ++v) rhs[4 * i + v] = -res_[i][v];
+      for (int v = 0; v < 4; ++v) rhs[4 * i + v] = fixed_node_[i] ? fixed_u_[i][v] - u_[i][v] : -res_[i][v];
       const int b = wall_node_bc_[i];
       if (b >= 0) {
         // strong conditions: drive momentum (and rho E - rho cv Tw) to zero

@@ -109,6 +109,11 @@ class FlowSolver {
   std::vector<State> venkat_eps_;
   std::vector<int> edge_pos_ij_, edge_pos_ji_;   // BSR positions of the off-diagonal blocks
   std::vector<int> wall_node_bc_;                 // -1 or the no-slip bc index per node
+  // Nodes on a far field whose free stream enters supersonically: every characteristic comes
+  // from outside, so the node state is imposed strongly (conservative, per node; empty state
+  // marks free nodes via fixed_node_).
+  std::vector<char> fixed_node_;
+  std::vector<State> fixed_u_;
 
   std::vector<State> u_, w_, res_, phi_, edge_flux_;
   std::vector<std::array<double, 8>> grad_;
