@@ -1,0 +1,166 @@
+// Verification of the nonlinear statics against closed forms and published benchmarks
+// (FORMULATION.md sec. 5; refdata/beam CSVs).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "refdata.hpp"
+#include "tfmb/beam/assembly.hpp"
+#include "tfmb/beam/cases.hpp"
+#include "tfmb/beam/rotation_wm.hpp"
+#include "tfmb/beam/static_solver.hpp"
+
+using namespace tfmb::beam;
+
+namespace {
+
+struct Tip {
+  Eigen::Vector3d position;
+  bool converged;
+};
+
+}  // namespace
+
+// Cantilever rolled up by an end moment M = lam 2 pi EI / L: the axis is a circle of radius
+// EI/M; at lam = 1 the tip returns to the root (full circle), at lam = 2 after two turns.
+// Simo & Vu-Quoc's data: L = 1, EI = 2. The extensible, shear-deformable beam has the same closed
+// form because pure bending produces no axial or shear force (refdata CSV header).
+TEST(StaticsVerification, EndMomentRollUpFullCircleAndTwoTurns) {
+  const double length = 1.0, ei = 2.0;
+  const Section sec = make_diagonal_section(1e4, 1e4, 1e4, 2.0, ei, ei);
+  const auto table = beam_test::read_table(beam_test::refdata_dir() + "/cantilever_end_moment_analytic.csv");
+  for (const double lam_final : {1.0, 2.0}) {
+    const int n_elements = lam_final > 1.0 ? 80 : 40;
+    Model m = cases::cantilever(length, n_elements, sec);
+    const int tip = static_cast<int>(m.nodes.size()) - 1;
+    m.nodal_loads.push_back({tip, Eigen::Vector3d::Zero(), Eigen::Vector3d(0, 0, 2 * M_PI * ei / length), false});
+    Assembly asmb(m);
+    StaticOptions opt;
+    opt.final_load_factor = lam_final;
+    opt.initial_steps = static_cast<int>(4 * lam_final);
+    double worst_csv = 0.0;
+    opt.on_step = [&](double lam, const State& s) {
+      // Compare against the CSV rows at the load levels we pass through (lam <= 1).
+      for (const auto& row : table.rows)
+        if (std::abs(row[table.col("lam")] - lam) < 1e-12) {
+          const Eigen::Vector2d exact(row[table.col("x_over_L")], row[table.col("y_over_L")]);
+          worst_csv = std::max(worst_csv, (s.position[tip].head<2>() / length - exact).norm());
+        }
+    };
+    const StaticResult r = solve_static(asmb, asmb.initial_state(), opt);
+    ASSERT_TRUE(r.converged) << "lam " << lam_final;
+    // Closed form at lam = 1 and 2: the tip is back at the root, rotated by 2 pi lam.
+    const Eigen::Vector3d x = r.state.position[tip];
+    EXPECT_LT(x.norm() / length, 1e-6) << "lam " << lam_final << " tip " << x.transpose();
+    // Tip rotation: back to the reference frame after 2 pi lam; error relative to the total angle.
+    const double angle_error = wm_angle(wm_from_rotation(asmb.frame(r.state, tip)));
+    EXPECT_LT(angle_error / (2 * M_PI * lam_final), 1e-6);
+    EXPECT_LT(worst_csv, 1e-6) << "intermediate load levels";
+    std::cout << "[roll-up] lam " << lam_final << ": " << n_elements << " elements, " << r.steps << " steps, "
+              << r.iterations << " Newton iterations, |tip|/L = " << x.norm() / length << ", worst CSV error "
+              << worst_csv << "\n";
+  }
+}
+
+// Tip-load elastica (Bisshopp & Drucker): inextensible, shear-rigid reference; EA and GA are
+// 1e7 times the bending scale so their compliance (~1e-7) is far below the 0.1 % tolerance.
+TEST(StaticsVerification, TipLoadElasticaWithinPointOnePercent) {
+  const double length = 1.0, ei = 1.0;
+  const Section sec = make_diagonal_section(1e7, 1e7, 1e7, 1.0, ei, ei);
+  const auto table = beam_test::read_table(beam_test::refdata_dir() + "/cantilever_tip_load_elastica.csv");
+  Model m = cases::cantilever(length, 16, sec);
+  const int tip = static_cast<int>(m.nodes.size()) - 1;
+  const double k_max = 10.0;
+  m.nodal_loads.push_back({tip, Eigen::Vector3d(0, -k_max * ei / (length * length), 0), Eigen::Vector3d::Zero(), false});
+  Assembly asmb(m);
+  StaticOptions opt;
+  opt.initial_steps = 20;  // factor steps of 0.05 -> k = 0.5, 1, ..., 10 are visited
+  opt.on_step = nullptr;
+  int checked = 0;
+  double worst = 0.0;
+  opt.on_step = [&](double lf, const State& s) {
+    const double k = lf * k_max;
+    for (const auto& row : table.rows) {
+      if (std::abs(row[table.col("k")] - k) > 1e-9 || k == 0.0) continue;
+      const double v = -s.position[tip].y() / length;
+      const double u = 1.0 - s.position[tip].x() / length;
+      const double v_ref = row[table.col("v_over_L")], u_ref = row[table.col("u_over_L")];
+      EXPECT_LT(std::abs(v - v_ref) / v_ref, 1e-3) << "k = " << k;
+      EXPECT_LT(std::abs(u - u_ref) / u_ref, 1e-3) << "k = " << k;
+      worst = std::max({worst, std::abs(v - v_ref) / v_ref, std::abs(u - u_ref) / u_ref});
+      ++checked;
+    }
+  };
+  opt.initial_steps = 20;
+  const StaticResult r = solve_static(asmb, asmb.initial_state(), opt);
+  ASSERT_TRUE(r.converged);
+  EXPECT_GE(checked, 4);
+  std::cout << "[elastica] 16 elements, " << checked << " load levels, worst relative error " << worst << "\n";
+}
+
+// 45-degree bend, tip position against Simo & Vu-Quoc (1986) at P = 300, 450, 600 within 0.5 %
+// (norm of the position difference over the norm of the reference position; the clamp is at the
+// origin). The 450 row is marked UNVERIFIED-recalled in the CSV; it is checked all the same.
+TEST(StaticsVerification, Bend45AgainstSimoVuQuoc) {
+  const auto table = beam_test::read_table(beam_test::refdata_dir() + "/bend45_tip_positions.csv");
+  // Section data of the beam references (GXBeam/Simo-Vu-Quoc lineage): shear factor 1 and
+  // J = I2 + I3 = 1/6 (FORMULATION.md sec. 2: the references differ here).
+  Model m = cases::bend45(16, 600.0, 1.0, 1.0 / 6.0);
+  const int tip = static_cast<int>(m.nodes.size()) - 1;
+  Assembly asmb(m);
+  StaticOptions opt;
+  opt.initial_steps = 4;  // 150, 300, 450, 600 (the solver may cut back)
+  std::vector<std::pair<double, Eigen::Vector3d>> tips;
+  opt.on_step = [&](double lf, const State& s) { tips.push_back({600.0 * lf, s.position[tip]}); };
+  const StaticResult r = solve_static(asmb, asmb.initial_state(), opt);
+  ASSERT_TRUE(r.converged);
+  int checked = 0;
+  for (size_t i = 0; i < table.rows.size(); ++i) {
+    if (table.text[i][0].find("Simo & Vu-Quoc") == std::string::npos) continue;
+    const double p = table.rows[i][table.col("P")];
+    const Eigen::Vector3d ref(table.rows[i][table.col("x")], table.rows[i][table.col("y")],
+                              table.rows[i][table.col("z")]);
+    for (const auto& [load, x] : tips)
+      if (std::abs(load - p) < 1e-9) {
+        // Tip position error relative to the tip position (distance from the clamp).
+        const double err = (x - ref).norm() / ref.norm();
+        EXPECT_LT(err, 5e-3) << "P " << p;
+        std::cout << "[bend45] P " << p << ": ours " << x.transpose() << "  Simo-Vu-Quoc " << ref.transpose()
+                  << "  relative error " << err << "\n";
+        ++checked;
+      }
+  }
+  EXPECT_EQ(checked, 3);
+}
+
+// The same bend against CalculiX's converged 64-element B32R run. Finding: CalculiX's tips agree
+// with our J = 1/6, k = 1 section to ~1e-4, while J = 0.1406, k = 5/6 (which the CSV header
+// expects for the expanded bricks) moves our tip by ~0.5 % towards the Kynema/Cardona rows. So the
+// comparison uses J = 1/6, k = 1; tolerance 0.1 % covers CalculiX's own mesh error (~1e-4).
+TEST(StaticsVerification, Bend45AgainstConvergedCalculix) {
+  const auto table = beam_test::read_table(beam_test::refdata_dir() + "/calculix/bend45_calculix_results.csv");
+  Model m = cases::bend45(16, 600.0, 1.0, 1.0 / 6.0);
+  const int tip = static_cast<int>(m.nodes.size()) - 1;
+  Assembly asmb(m);
+  StaticOptions opt;
+  opt.initial_steps = 4;
+  std::vector<std::pair<double, Eigen::Vector3d>> tips;
+  opt.on_step = [&](double lf, const State& s) { tips.push_back({600.0 * lf, s.position[tip]}); };
+  const StaticResult r = solve_static(asmb, asmb.initial_state(), opt);
+  ASSERT_TRUE(r.converged);
+  int checked = 0;
+  for (const auto& row : table.rows) {
+    if (row[table.col("nelem_B32R")] != 64) continue;
+    const Eigen::Vector3d ref(row[table.col("x")], row[table.col("y")], row[table.col("z")]);
+    for (const auto& [load, x] : tips)
+      if (std::abs(load - row[table.col("load")]) < 1e-9) {
+        const double err = (x - ref).norm() / ref.norm();
+        EXPECT_LT(err, 1e-3) << "P " << load;
+        std::cout << "[bend45-ccx] P " << load << ": ours " << x.transpose() << "  CalculiX-64 " << ref.transpose()
+                  << "  relative error " << err << "\n";
+        ++checked;
+      }
+  }
+  EXPECT_EQ(checked, 3);
+}
