@@ -119,7 +119,7 @@ std::string make_bad_file(const Schema& schema, Corruption corruption,
       break;
     }
     case Corruption::unknown_major_version:
-      document.attributes["/"]["format_version"].text = "2.0";
+      document.attributes["/"]["format_version"].text = std::to_string(schema.major + 1) + ".0";
       break;
     case Corruption::wrong_kind:
       document.attributes["/"]["format"].text = schema.kind == "flow" ? "tfmb/loads" : "tfmb/flow";
