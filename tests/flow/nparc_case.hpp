@@ -58,9 +58,8 @@ struct Column {
   double p_ratio;
   double mach;
 };
-inline std::vector<Column> column_averages(const FlowSolver& solver, const PerfectGas& gas, int ni, int nj) {
-  const auto w = solver.primitive();
-  const auto& x = solver.dual().coords;
+inline std::vector<Column> column_averages(const std::vector<State>& w, const std::vector<Vec2>& x,
+                                           const PerfectGas& gas, int ni, int nj) {
   std::vector<Column> out(ni);
   for (int i = 0; i < ni; ++i) {
     double h = 0.0, p = 0.0, m = 0.0;

@@ -71,3 +71,96 @@ void check_mesh(const Mesh& mesh) {
 }
 
 }  // namespace tfmb::flow
+
+#include <algorithm>
+#include <queue>
+
+namespace tfmb::flow {
+
+std::vector<int> rcm_ordering(const Mesh& mesh) {
+  const int n = mesh.num_points();
+  std::vector<std::vector<int>> adj(n);
+  auto link = [&](const int* ids, int nv) {
+    for (int k = 0; k < nv; ++k) {
+      const int a = ids[k], b = ids[(k + 1) % nv];
+      adj[a].push_back(b);
+      adj[b].push_back(a);
+    }
+  };
+  for (const auto& t : mesh.triangles) link(t.data(), 3);
+  for (const auto& q : mesh.quads) link(q.data(), 4);
+  for (auto& a : adj) {
+    std::sort(a.begin(), a.end());
+    a.erase(std::unique(a.begin(), a.end()), a.end());
+  }
+  std::vector<int> order;
+  order.reserve(n);
+  std::vector<char> seen(n, 0);
+  std::vector<int> level(n, -1);
+  auto bfs_last = [&](int start) {  // farthest node from start (for a pseudo-peripheral start)
+    std::fill(level.begin(), level.end(), -1);
+    std::queue<int> q;
+    q.push(start);
+    level[start] = 0;
+    int last = start;
+    while (!q.empty()) {
+      const int v = q.front();
+      q.pop();
+      last = v;
+      for (int w : adj[v]) {
+        if (level[w] < 0) {
+          level[w] = level[v] + 1;
+          q.push(w);
+        }
+      }
+    }
+    return last;
+  };
+  for (int root = 0; root < n; ++root) {
+    if (seen[root]) continue;
+    int start = bfs_last(bfs_last(root));
+    std::queue<int> q;
+    q.push(start);
+    seen[start] = 1;
+    std::vector<int> next;
+    while (!q.empty()) {
+      const int v = q.front();
+      q.pop();
+      order.push_back(v);
+      next.clear();
+      for (int w : adj[v]) {
+        if (!seen[w]) next.push_back(w);
+      }
+      std::sort(next.begin(), next.end(), [&](int a, int b) {
+        return adj[a].size() != adj[b].size() ? adj[a].size() < adj[b].size() : a < b;
+      });
+      for (int w : next) {
+        seen[w] = 1;
+        q.push(w);
+      }
+    }
+  }
+  std::reverse(order.begin(), order.end());
+  std::vector<int> new_of_old(n);
+  for (int k = 0; k < n; ++k) new_of_old[order[k]] = k;
+  return new_of_old;
+}
+
+void renumber_nodes(Mesh& mesh, const std::vector<int>& new_of_old) {
+  std::vector<Vec2> points(mesh.points.size());
+  for (std::size_t k = 0; k < points.size(); ++k) points[new_of_old[k]] = mesh.points[k];
+  mesh.points = std::move(points);
+  for (auto& t : mesh.triangles) {
+    for (int& v : t) v = new_of_old[v];
+  }
+  for (auto& q : mesh.quads) {
+    for (int& v : q) v = new_of_old[v];
+  }
+  for (auto& c : mesh.boundaries) {
+    for (auto& e : c.edges) {
+      for (int& v : e) v = new_of_old[v];
+    }
+  }
+}
+
+}  // namespace tfmb::flow

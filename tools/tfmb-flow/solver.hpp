@@ -28,7 +28,7 @@ struct SolverSettings {
   int limiter_stall_iterations = 50;
   State reference_state{1.0, 1.0, 1.0, 1.0};  // rho, |u|, |u|, p scales for the limiter
   double cfl_start = 5.0;
-  double cfl_max = 1e5;
+  double cfl_max = 1e4;
   double cfl_growth = 2.0;        // largest CFL increase per iteration
   double ser_exponent = 1.0;      // CFL = cfl_start * (R_max / R_n)^ser_exponent
   int max_iterations = 500;
