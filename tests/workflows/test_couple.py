@@ -1,0 +1,88 @@
+#!/usr/bin/python3
+"""tfmb-couple on fixed-point problems with known answers: x = H(x) with H linear and
+contractive (and one that is not). Checks that every acceleration finds the fixed point, that
+IQN-ILS solves an n-dimensional linear problem in at most n + 2 iterations (a secant method's
+finite termination), that Aitken beats constant relaxation, and the exit codes."""
+import os
+import shutil
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+
+couple, scratch = sys.argv[1], sys.argv[2]
+shutil.rmtree(scratch, ignore_errors=True)
+os.makedirs(scratch)
+os.chdir(scratch)
+rng = np.random.default_rng(7)
+n_points = 4
+n = 2 * n_points
+A = rng.normal(size=(n, n))
+A = 0.8 * A / np.max(np.abs(np.linalg.eigvals(A)))  # spectral radius 0.8: plain iteration converges slowly
+b = rng.normal(size=n) * 1e-3
+x_star = np.linalg.solve(np.eye(n) - A, b)
+
+
+def write(path, x):
+    with h5py.File(path, "w") as f:
+        f.attrs["format"] = "tfmb/walldisp"
+        f.attrs["format_version"] = "1.0"
+        for i, wall in enumerate(("lower", "upper")):
+            f[f"walls/{wall}/x0"] = np.zeros((n_points // 2, 2))
+            f[f"walls/{wall}/displacement"] = x[i * n // 2:(i + 1) * n // 2].reshape(-1, 2)
+
+
+def read(path):
+    with h5py.File(path) as f:
+        return np.concatenate([f[f"walls/{w}/displacement"][()].ravel() for w in ("lower", "upper")])
+
+
+def solve(acceleration, H, max_iterations=60, extra=()):
+    x = np.zeros(n)
+    for k in range(1, max_iterations + 1):
+        write(f"raw-{k}.h5", H(x))
+        args = [couple, "--iteration", str(k), "--raw", f"raw-{k}.h5", "--state", "state.npz",
+                "--log", f"log-{acceleration}.csv", "-o", f"used-{k + 1}.h5",
+                "--acceleration", acceleration, "--measure", "absolute", "--tolerance", "1e-10",
+                "--max-iterations", str(max_iterations), *extra]
+        if k > 1:
+            args += ["--used", f"used-{k}.h5"]
+        code = subprocess.run(args, capture_output=True).returncode
+        if code != 10:
+            return code, k, x
+        x = read(f"used-{k + 1}.h5")
+    return None, max_iterations, x
+
+
+H = lambda x: A @ x + b
+results = {}
+for acceleration in ("constant", "aitken", "iqn-ils"):
+    code, iterations, x = solve(acceleration, H)
+    results[acceleration] = iterations
+    assert code == 0, (acceleration, code, iterations)
+    assert np.linalg.norm(x - x_star) < 1e-8, (acceleration, np.linalg.norm(x - x_star))
+    print(f"{acceleration}: converged in {iterations} iterations")
+assert results["iqn-ils"] <= n + 2, results
+assert results["aitken"] < results["constant"], results
+
+# Strict by default: reaching the limit unconverged exits 1; --lenient exits 0.
+code, k, _ = solve("constant", H, max_iterations=3)
+assert (code, k) == (1, 3), (code, k)
+code, k, _ = solve("constant", H, max_iterations=3, extra=["--lenient"])
+assert (code, k) == (0, 3), (code, k)
+# Divergence stop: a non-contractive map with w = 1 grows the residual.
+code, k, _ = solve("constant", lambda x: 3.0 * x + b, extra=["--relaxation", "1.0"])
+assert code == 5, (code, k)
+# Bad input: a file of another kind.
+with h5py.File("bad.h5", "w") as f:
+    f.attrs["format"] = "tfmb/flow"
+code = subprocess.run([couple, "--iteration", "1", "--raw", "bad.h5", "--state", "s.npz",
+                       "--log", "l.csv"], capture_output=True).returncode
+assert code == 3, code
+code = subprocess.run([couple, "--iteration", "0", "--raw", "raw-1.h5", "--state", "s.npz",
+                       "--log", "l.csv"], capture_output=True).returncode
+assert code == 2, code
+lines = open("log-iqn-ils.csv").read().splitlines()
+assert lines[0].startswith("iteration,residual_norm") and len(lines) == results["iqn-ils"] + 1
+print("coupling tests passed:", results)
