@@ -16,6 +16,22 @@ std::vector<State> make_venkat_epsilon(const DualMesh& dual, double k_venkat, co
   return eps;
 }
 
+std::vector<State> make_wang_epsilon(const std::vector<State>& q, double coefficient, int num_nodes) {
+  State lo = q[0], hi = q[0];
+  for (int i = 0; i < num_nodes; ++i) {
+    for (int v = 0; v < 4; ++v) {
+      lo[v] = std::min(lo[v], q[i][v]);
+      hi[v] = std::max(hi[v], q[i][v]);
+    }
+  }
+  State e;
+  for (int v = 0; v < 4; ++v) {
+    const double d = coefficient * (hi[v] - lo[v]);
+    e[v] = std::max(d * d, 1e-300);
+  }
+  return std::vector<State>(num_nodes, e);
+}
+
 void venkatakrishnan_limiter(const DualMesh& dual, const std::vector<State>& q,
                              const std::vector<std::array<double, 8>>& grad,
                              const std::vector<State>& epsilon2, std::vector<State>& phi) {

@@ -20,4 +20,10 @@ void venkatakrishnan_limiter(const DualMesh& dual, const std::vector<State>& q,
 // depend on the units of the mesh or of the state.
 std::vector<State> make_venkat_epsilon(const DualMesh& dual, double k_venkat, const State& q_ref);
 
+// Wang's variant (Wang 2000, AIAA 2000-0604; as in SU2's VENKATAKRISHNAN_WANG): epsilon =
+// coefficient * (global max - global min) of each variable, the same for every node. Small
+// fluctuations of nearly uniform fields (pressure across a boundary layer) then stay unlimited
+// on any cell size, while jumps of the order of the range (shocks) are limited.
+std::vector<State> make_wang_epsilon(const std::vector<State>& q, double coefficient, int num_nodes);
+
 }  // namespace tfmb::flow

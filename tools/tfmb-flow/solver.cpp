@@ -158,7 +158,10 @@ void FlowSolver::compute_residual(bool update_limiter) {
 
   const bool second = settings_.order >= 2;
   if (second || settings_.viscous) lsq_gradients(dual_, lsq_, w_, grad_);
-  if (second && settings_.limiter && update_limiter) venkatakrishnan_limiter(dual_, w_, grad_, venkat_eps_, phi_);
+  if (second && settings_.limiter && update_limiter) {
+    if (settings_.venkat_wang > 0.0) venkat_eps_ = make_wang_epsilon(w_, settings_.venkat_wang, n);
+    venkatakrishnan_limiter(dual_, w_, grad_, venkat_eps_, phi_);
+  }
   const bool limit = settings_.limiter;
 
 #pragma omp parallel for schedule(static)
@@ -492,6 +495,66 @@ BoundaryIntegral FlowSolver::boundary_integral(int curve) {
     total.energy_flow += f[3];
   }
   return total;
+}
+
+WallTrace FlowSolver::wall_trace(int curve) {
+  const ScopedThreads threads(settings_.threads);
+  for (int i = 0; i < dual_.num_nodes; ++i) w_[i] = gas_.primitive(u_[i]);
+  lsq_gradients(dual_, lsq_, w_, grad_);
+  const auto& edges = mesh_.boundaries.at(curve).edges;
+  WallTrace t;
+  if (edges.empty()) return t;
+  t.node.push_back(edges.front()[0]);
+  for (const auto& e : edges) t.node.push_back(e[1]);
+  // outward normal per node: sum of its boundary faces on this curve
+  std::vector<Vec2> normal(t.node.size());
+  std::vector<Vec2> tangent(t.node.size());
+  for (std::size_t k = 0; k < edges.size(); ++k) {
+    const Vec2 a = dual_.coords[edges[k][0]];
+    const Vec2 b = dual_.coords[edges[k][1]];
+    tangent[k] = tangent[k] + (b - a);
+    tangent[k + 1] = tangent[k + 1] + (b - a);
+  }
+  for (const auto& face : dual_.boundary_faces) {
+    if (face.curve != curve) continue;
+    const int k = face.curve_edge;
+    const int slot = (face.node == edges[k][0]) ? k : k + 1;
+    normal[slot] = normal[slot] + face.normal;
+  }
+  double s = 0.0;
+  for (std::size_t k = 0; k < t.node.size(); ++k) {
+    const int i = t.node[k];
+    if (k > 0) s += norm(dual_.coords[i] - dual_.coords[t.node[k - 1]]);
+    const State& w = w_[i];
+    t.s.push_back(s);
+    t.x.push_back(dual_.coords[i].x);
+    t.y.push_back(dual_.coords[i].y);
+    t.pressure.push_back(w[3]);
+    const double temp = gas_.temperature(w);
+    t.temperature.push_back(temp);
+    double shear = 0.0, heat = 0.0;
+    if (settings_.viscous) {
+      const auto& g = grad_[i];
+      const double nn = norm(normal[k]);
+      const Vec2 n{normal[k].x / nn, normal[k].y / nn};
+      const double tl = norm(tangent[k]);
+      const Vec2 tv{tangent[k].x / tl, tangent[k].y / tl};
+      const double mu = settings_.viscosity.viscosity(temp);
+      const double div = g[2] + g[5];
+      const double txx = mu * (2.0 * g[2] - 2.0 / 3.0 * div);
+      const double tyy = mu * (2.0 * g[5] - 2.0 / 3.0 * div);
+      const double txy = mu * (g[3] + g[4]);
+      // traction on the wall = -(tau . n_out) (n_out leaves the fluid)
+      shear = -((txx * n.x + txy * n.y) * tv.x + (txy * n.x + tyy * n.y) * tv.y);
+      const double dtdx = (g[6] - temp * gas_.R * g[0]) / (w[0] * gas_.R);
+      const double dtdy = (g[7] - temp * gas_.R * g[1]) / (w[0] * gas_.R);
+      const double k_cond = mu * gas_.cp() / settings_.viscosity.prandtl;
+      heat = -k_cond * (dtdx * n.x + dtdy * n.y);
+    }
+    t.shear_stress.push_back(shear);
+    t.heat_flux.push_back(heat);
+  }
+  return t;
 }
 
 }  // namespace tfmb::flow

@@ -20,7 +20,10 @@ struct SolverSettings {
   int order = 2;                  // 1 or 2 (spatial accuracy of the convective fluxes)
   double entropy_fix = 0.1;       // Harten delta as a fraction of the sound speed
   bool limiter = true;            // Venkatakrishnan limiter on the reconstruction
-  double venkat_k = 5.0;          // limiter smoothness constant K
+  double venkat_k = 5.0;          // limiter smoothness constant K (mesh-size based epsilon)
+  // When > 0, use Wang's epsilon = venkat_wang * (global range of each variable) instead of
+  // the mesh-size based (K h)^3; keeps smooth boundary layers unlimited.
+  double venkat_wang = 0.1;
   // Freeze the limiter once the density residual has dropped by this factor (0: never), or when
   // it has not reached a new minimum for limiter_stall_iterations; stops limiter chatter from
   // stalling convergence near shocks (the frozen limiter is a fixed, valid scheme).
@@ -71,6 +74,19 @@ struct BoundaryIntegral {
   double energy_flow = 0.0;// [W]
 };
 
+// Quantities along one boundary curve, at its nodes in curve order.
+struct WallTrace {
+  std::vector<int> node;
+  std::vector<double> s;            // arc length from the curve's first node [m]
+  std::vector<double> x, y;         // [m]
+  std::vector<double> pressure;     // [Pa]
+  std::vector<double> temperature;  // [K]
+  // Tangential traction of the fluid on the wall along the curve direction [Pa] (0 if inviscid).
+  std::vector<double> shear_stress;
+  // Heat flux from the fluid into the wall [W/m^2] (0 if inviscid).
+  std::vector<double> heat_flux;
+};
+
 class FlowSolver {
  public:
   // bcs[b] applies to mesh.boundaries[b].
@@ -87,6 +103,7 @@ class FlowSolver {
   // Residual R(U) (flux balance, positive = net outflow) for the current state; per node.
   std::vector<State> residual();
   BoundaryIntegral boundary_integral(int curve);
+  WallTrace wall_trace(int curve);
   // Node gradients of the primitive variables of the current state.
   const std::vector<std::array<double, 8>>& gradients() const { return grad_; }
 
