@@ -1,0 +1,210 @@
+// tfmb-loads end to end on files written by the tests: outputs validate against their
+// schemas, totals are printed, bad inputs exit 3 with a located message.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <Eigen/Geometry>
+
+#include "run.hpp"
+#include "test_files.hpp"
+#include "tfmb/common/errors.hpp"
+#include "tfmb/formats/schema.hpp"
+
+using namespace tfmb;
+using namespace tfmb::loads;
+using tfmb::testfiles::Vec2;
+namespace tf = tfmb::testfiles;
+
+namespace {
+
+const Logger quiet("test", Verbosity::quiet);
+
+std::vector<std::string> problems(const std::filesystem::path& file, const std::string& kind) {
+  const h5::Reader reader(file);
+  std::vector<std::string> out;
+  for (const auto& p : formats::validate(reader, *formats::find_schema(kind))) out.push_back(p.object_path + ": " + p.message);
+  return out;
+}
+
+// Two straight flaps; inner fluid on the right of the point order, outer on the left.
+struct Files {
+  std::filesystem::path dir, model, flow;
+  std::vector<tf::TestFlap> flaps;
+  explicit Files(const std::string& name, bool half_inner = false) {
+    dir = tf::temp_dir(name);
+    model = dir / "model.h5";
+    flow = dir / "flow.h5";
+    flaps = {tf::straight_flap("upper", {0.0, 0.1}, 0.1, 0.3, 9, 13),
+             tf::straight_flap("lower", {0.0, -0.1}, -0.1, 0.3, 9, 13)};
+    tf::write_model(model, flaps);
+    std::vector<tf::TestTrace> traces;
+    auto p = [](const Vec2& x) { return 2e5 - 3e5 * x.x(); };
+    auto ambient = [](const Vec2&) { return 1e5; };
+    auto tau = [](const Vec2& x) { return 50.0 * x.x(); };
+    for (const auto& f : flaps) {
+      // Flow traces twice as fine as the model walls, not matching the beam nodes.
+      std::vector<Vec2> inner, outer;
+      const std::size_t n = f.inner_wall.size();
+      for (std::size_t i = 0; i + 1 < n; ++i) {
+        for (double u : {0.0, 0.5}) {
+          inner.push_back(f.inner_wall[i] + u * (f.inner_wall[i + 1] - f.inner_wall[i]));
+          outer.push_back(f.outer_wall[i] + u * (f.outer_wall[i + 1] - f.outer_wall[i]));
+        }
+      }
+      inner.push_back(f.inner_wall.back());
+      outer.push_back(f.outer_wall.back());
+      if (half_inner && f.name == "upper") inner.resize(inner.size() / 2);
+      traces.push_back(tf::make_trace(f.name + "_in", f.name, "inner", inner, p, tau, -1.0));
+      traces.push_back(tf::make_trace(f.name + "_out", f.name, "outer", outer, ambient, tau, 1.0));
+    }
+    // A wall that belongs to no flap is ignored.
+    traces.push_back(tf::make_trace("duct", "", "", {{-0.2, 0.2}, {-0.1, 0.2}}, ambient, tau, -1.0));
+    tf::write_flow(flow, traces);
+  }
+};
+
+int run_cli(const std::string& arguments, std::string* stderr_text = nullptr) {
+  const std::string err = (std::filesystem::temp_directory_path() / "tfmb-iface-loads-stderr.txt").string();
+  const int status = std::system((std::string(TFMB_BIN_DIR) + "/tfmb-loads " + arguments + " 2>" + err + " >/dev/null").c_str());
+  if (stderr_text) {
+    std::ifstream in(err);
+    std::stringstream s;
+    s << in.rdbuf();
+    *stderr_text = s.str();
+  }
+  return WEXITSTATUS(status);
+}
+
+}  // namespace
+
+TEST(LoadsFiles, ForcesWritesAValidFileAndPrintsTotals) {
+  const Files files("forces");
+  ASSERT_TRUE(problems(files.flow, "flow").empty()) << problems(files.flow, "flow").front();
+  ASSERT_TRUE(problems(files.model, "model").empty()) << problems(files.model, "model").front();
+  for (Method method : {Method::linear, Method::conservative}) {
+    ForcesOptions o;
+    o.flow_file = files.flow;
+    o.model_file = files.model;
+    o.output = files.dir / "loads.h5";
+    o.method = method;
+    std::ostringstream out;
+    const ForcesResult r = run_forces(o, quiet, out);
+    const auto p = problems(o.output, "loads");
+    EXPECT_TRUE(p.empty()) << p.front();
+    ASSERT_EQ(r.loads.flaps.size(), 2u);
+    EXPECT_NE(out.str().find("upper"), std::string::npos);
+    for (const auto& f : r.loads.flaps) {
+      // Linear field on straight flaps: both methods keep the totals.
+      EXPECT_LT((f.loads.mapped.force - f.loads.traces.force).norm(), 1e-10 * f.loads.traces.force.norm());
+      // Net (p_in - p_out) > 0 pushes each flap from its inner towards its outer wall (the
+      // left normal of the test flaps).
+      const double angle = f.name == "upper" ? 0.1 : -0.1;
+      EXPECT_GT(f.loads.traces.force.dot(Vec2(-std::sin(angle), std::cos(angle))), 0.0);
+    }
+    const h5::Reader reader(o.output);
+    EXPECT_EQ(reader.attr_string("/", "method"), method_name(method));
+  }
+}
+
+TEST(LoadsFiles, FunctionAndDiffNeedNoFlowFile) {
+  const Files files("function");
+  ForcesOptions o;
+  o.model_file = files.model;
+  o.output = files.dir / "loads.h5";
+  o.function = "p_inner = 2e5 - 3e5*x; p_outer = 1e5; tau = 50*x";
+  o.diff = true;
+  std::ostringstream out;
+  const ForcesResult r = run_forces(o, quiet, out);
+  ASSERT_EQ(r.diffs.size(), 2u);
+  for (const auto& d : r.diffs) {
+    EXPECT_LT(d.max_distributed_force_error, 1e-9 * d.max_distributed_force);
+    EXPECT_LT(d.force_error, 1e-10);
+    EXPECT_LT(d.moment_error, 1e-10);
+  }
+  EXPECT_NE(out.str().find("mapping error"), std::string::npos);
+}
+
+TEST(LoadsFiles, TracesThatDoNotCoverAFlapAreRefused) {
+  const Files files("uncovered", true);
+  ForcesOptions o;
+  o.flow_file = files.flow;
+  o.model_file = files.model;
+  o.output = files.dir / "loads.h5";
+  try {
+    std::ostringstream out;
+    run_forces(o, quiet, out);
+    FAIL() << "expected BadInput";
+  } catch (const BadInput& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find(files.flow.string()), std::string::npos) << m;
+    EXPECT_NE(m.find("upper_in"), std::string::npos) << m;
+    EXPECT_NE(m.find("uncovered"), std::string::npos) << m;
+  }
+  EXPECT_FALSE(std::filesystem::exists(o.output));
+  std::string err;
+  EXPECT_EQ(run_cli("forces " + files.flow.string() + " " + files.model.string() + " -o " +
+                    (files.dir / "cli.h5").string(), &err), 3);
+  EXPECT_NE(err.find("uncovered"), std::string::npos) << err;
+}
+
+TEST(LoadsFiles, DisplaceMapsARigidMotionAndRefusesAMismatchedStructure) {
+  const Files files("displace");
+  const double phi = 0.02;
+  const Vec2 shift(0.001, 0.002), pivot(0.0, 0.0);
+  const Eigen::Matrix2d R = Eigen::Rotation2Dd(phi).toRotationMatrix();
+  std::vector<tf::TestStructureFlap> sflaps;
+  for (const auto& f : files.flaps) {
+    tf::TestStructureFlap s;
+    s.name = f.name;
+    s.points = f.reference_curve;
+    for (const Vec2& x : s.points) {
+      s.displacement.push_back(shift + (R - Eigen::Matrix2d::Identity()) * (x - pivot));
+      s.rotation_angle.push_back(phi);
+    }
+    sflaps.push_back(s);
+  }
+  const auto structure = files.dir / "structure.h5";
+  tf::write_structure(structure, sflaps);
+  DisplaceOptions o;
+  o.structure_file = structure;
+  o.model_file = files.model;
+  o.mesh_file = files.flow;
+  o.output = files.dir / "walldisp.h5";
+  std::ostringstream out;
+  const DisplaceResult r = run_displace(o, quiet, out);
+  const auto p = problems(o.output, "walldisp");
+  EXPECT_TRUE(p.empty()) << p.front();
+  ASSERT_EQ(r.walls.size(), 4u);  // the duct wall has no flap
+  for (const auto& w : r.walls) {
+    for (std::size_t k = 0; k < w.points.size(); ++k) {
+      const Vec2 exact = shift + (R - Eigen::Matrix2d::Identity()) * (w.points[k] - pivot);
+      EXPECT_LT((w.displacement[k] - exact).norm(), 1e-15) << w.name << " " << k;
+    }
+  }
+  // --function with --diff: the same rigid motion as an analytic field.
+  DisplaceOptions f = o;
+  f.structure_file.clear();
+  f.function = "ux = 0.001 + (cos(0.02)-1)*x - sin(0.02)*y; uy = 0.002 + sin(0.02)*x + (cos(0.02)-1)*y; rz = 0.02";
+  f.diff = true;
+  const DisplaceResult rf = run_displace(f, quiet, out);
+  for (double e : rf.max_error) EXPECT_LT(e, 1e-15);
+
+  // A structure computed for another geometry: shifted beam nodes.
+  for (auto& s : sflaps) for (auto& x : s.points) x.y() += 0.01;
+  const auto shifted = files.dir / "shifted.h5";
+  tf::write_structure(shifted, sflaps);
+  std::string err;
+  EXPECT_EQ(run_cli("displace " + shifted.string() + " " + files.model.string() + " -o " +
+                    (files.dir / "bad.h5").string(), &err), 3);
+  EXPECT_NE(err.find("/flaps/lower/nodes"), std::string::npos) << err;
+  EXPECT_NE(err.find("mismatched model and structure"), std::string::npos) << err;
+  // A structure with a flap the model does not have.
+  sflaps.resize(1);
+  sflaps[0].name = "other";
+  tf::write_structure(shifted, sflaps);
+  EXPECT_EQ(run_cli("displace " + shifted.string() + " " + files.model.string() + " -o " +
+                    (files.dir / "bad.h5").string(), &err), 3);
+  EXPECT_NE(err.find("/flaps/other"), std::string::npos) << err;
+}

@@ -1,0 +1,261 @@
+#include "io.hpp"
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+#include "tfmb/common/errors.hpp"
+#include "tfmb/common/h5.hpp"
+#include "tfmb/formats/schema.hpp"
+
+namespace tfmb::loads {
+
+namespace {
+
+std::vector<Vec2> read_points(const h5::Reader& file, const std::string& path) {
+  const h5::MatrixXdR m = file.read_matrix(path, std::nullopt, 2);
+  std::vector<Vec2> points(static_cast<std::size_t>(m.rows()));
+  for (Eigen::Index i = 0; i < m.rows(); ++i) points[static_cast<std::size_t>(i)] = {m(i, 0), m(i, 1)};
+  return points;
+}
+
+Side parse_side(const h5::Reader& file, const std::string& object, const std::string& side) {
+  if (side == "inner") return Side::inner;
+  if (side == "outer") return Side::outer;
+  if (side == "end") return Side::end;
+  file.fail(object, "side '" + side + "' is not inner, outer or end");
+}
+
+h5::MatrixXdR rows3(const std::vector<Vec2>& v, bool as_3d = true) {
+  h5::MatrixXdR m = h5::MatrixXdR::Zero(static_cast<Eigen::Index>(v.size()), as_3d ? 3 : 2);
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    m(static_cast<Eigen::Index>(i), 0) = v[i].x();
+    m(static_cast<Eigen::Index>(i), 1) = v[i].y();
+  }
+  return m;
+}
+
+}  // namespace
+
+Model read_model(const std::filesystem::path& file) {
+  const h5::Reader reader = formats::open_checked(file, "model");
+  Model model;
+  model.file = file;
+  model.header = formats::read_header(reader);
+  for (const std::string& name : reader.children("/flaps")) {
+    const std::string g = "/flaps/" + name;
+    ModelFlap flap;
+    flap.name = name;
+    flap.material = reader.attr_string(g, "material");
+    flap.thickness = reader.attr_f64(g, "thickness");
+    flap.width = reader.attr_f64(g, "width");
+    flap.reference_curve = read_points(reader, g + "/reference_curve");
+    flap.inner_wall = read_points(reader, g + "/inner_wall");
+    flap.outer_wall = read_points(reader, g + "/outer_wall");
+    if (flap.reference_curve.size() < 2) reader.fail(g + "/reference_curve", "fewer than two beam nodes");
+    if (flap.inner_wall.size() < 2) reader.fail(g + "/inner_wall", "fewer than two points");
+    if (flap.outer_wall.size() < 2) reader.fail(g + "/outer_wall", "fewer than two points");
+    if (!(flap.thickness > 0.0)) reader.fail(g, "thickness must be positive");
+    if (!(flap.width > 0.0)) reader.fail(g, "width must be positive");
+    model.flaps.push_back(std::move(flap));
+  }
+  if (model.flaps.empty()) reader.fail("/flaps", "no flaps");
+  return model;
+}
+
+FlowTraces read_flow_traces(const std::filesystem::path& file) {
+  const h5::Reader reader = formats::open_checked(file, "flow");
+  FlowTraces out;
+  out.header = formats::read_header(reader);
+  const h5::MatrixXiR triangles = reader.read_index_matrix("/mesh/cells/triangle", std::nullopt, 3, 0,
+                                                          std::numeric_limits<std::int64_t>::max());
+  const h5::MatrixXiR quads = reader.read_index_matrix("/mesh/cells/quad", std::nullopt, 4, 0,
+                                                      std::numeric_limits<std::int64_t>::max());
+  const h5::MatrixXdR mesh_points = reader.read_matrix("/mesh/points", std::nullopt, 2);
+  const auto node_count = static_cast<std::int64_t>(mesh_points.rows());
+  // Centroid of the cell owning each wall edge (key: sorted node pair), to orient the traces.
+  std::map<std::pair<std::int64_t, std::int64_t>, Vec2> wall_edges;
+  std::vector<std::string> names = reader.is_group("/walls") ? reader.children("/walls")
+                                                             : std::vector<std::string>{};
+  std::map<std::string, std::vector<std::int64_t>> trace_nodes;
+  for (const std::string& name : names) {
+    const std::string g = "/walls/" + name;
+    trace_nodes[name] = reader.read_index_vector(g + "/node", std::nullopt, 0, node_count);
+    const auto& nodes = trace_nodes[name];
+    for (std::size_t k = 0; k + 1 < nodes.size(); ++k) {
+      wall_edges[{std::min(nodes[k], nodes[k + 1]), std::max(nodes[k], nodes[k + 1])}] = Vec2(NAN, NAN);
+    }
+  }
+  auto visit = [&](const auto& cells) {
+    for (Eigen::Index c = 0; c < cells.rows(); ++c) {
+      Vec2 centroid = Vec2::Zero();
+      for (Eigen::Index a = 0; a < cells.cols(); ++a) {
+        centroid += Vec2(mesh_points(cells(c, a), 0), mesh_points(cells(c, a), 1));
+      }
+      centroid /= static_cast<double>(cells.cols());
+      for (Eigen::Index a = 0; a < cells.cols(); ++a) {
+        const std::int64_t n0 = cells(c, a), n1 = cells(c, (a + 1) % cells.cols());
+        auto it = wall_edges.find({std::min(n0, n1), std::max(n0, n1)});
+        if (it != wall_edges.end()) it->second = centroid;
+      }
+    }
+  };
+  visit(triangles);
+  visit(quads);
+
+  for (const std::string& name : names) {
+    const std::string g = "/walls/" + name;
+    const std::string b = "/mesh/boundaries/" + name;
+    if (!reader.exists(b) || !reader.has_attr(b, "flap")) {
+      out.skipped.push_back(name);
+      continue;
+    }
+    WallTrace trace;
+    trace.name = name;
+    trace.flap = reader.attr_string(b, "flap");
+    if (trace.flap.empty()) {
+      out.skipped.push_back(name);
+      continue;
+    }
+    if (!reader.has_attr(b, "side")) reader.fail(b, "a flap wall needs a 'side' attribute (inner, outer or end)");
+    trace.side = parse_side(reader, b, reader.attr_string(b, "side"));
+    const std::vector<double> x = reader.read_vector(g + "/x");
+    const std::vector<double> y = reader.read_vector(g + "/y", x.size());
+    trace.pressure = reader.read_vector(g + "/pressure", x.size());
+    trace.wall_shear = reader.read_vector(g + "/wall_shear", x.size());
+    for (std::size_t i = 0; i < x.size(); ++i) trace.points.emplace_back(x[i], y[i]);
+    try {
+      check_trace(trace);
+    } catch (const std::invalid_argument& e) {
+      reader.fail(g, e.what());
+    }
+    const auto& nodes = trace_nodes[name];
+    if (nodes.size() != x.size()) reader.fail(g + "/node", "length differs from /x");
+    double vote = 0.0;
+    trace.normal_sign = 1.0;
+    for (std::size_t k = 0; k + 1 < nodes.size(); ++k) {
+      const Vec2 centroid = wall_edges[{std::min(nodes[k], nodes[k + 1]), std::max(nodes[k], nodes[k + 1])}];
+      if (std::isnan(centroid.x())) reader.fail(g + "/node", "nodes " + std::to_string(nodes[k]) + ", " +
+                                                 std::to_string(nodes[k + 1]) + " are not an edge of any mesh cell");
+      const double h = (trace.points[k + 1] - trace.points[k]).norm();
+      // The outward normal of the solid points into the fluid, i.e. towards the cell.
+      vote += h * trace.outward_normal(k).dot(centroid - trace.position(k, 0.5));
+    }
+    if (vote == 0.0) reader.fail(g, "cannot tell on which side of the wall the fluid is");
+    trace.normal_sign = vote > 0.0 ? 1.0 : -1.0;
+    out.traces.push_back(std::move(trace));
+  }
+  return out;
+}
+
+std::vector<MeshWall> read_mesh_walls(const std::filesystem::path& file) {
+  std::string kind;
+  {
+    const h5::Reader probe(file);
+    if (!probe.has_attr("/", "format")) probe.fail("/", "no 'format' attribute: not a tfmb file");
+    kind = probe.attr_string("/", "format");
+    if (kind.rfind("tfmb/", 0) == 0) kind = kind.substr(5);
+  }
+  if (kind != "flow" && kind != "flowmesh") {
+    const h5::Reader probe(file);
+    probe.fail("/", "format 'tfmb/" + kind + "' has no flow mesh; give a flowmesh or flow file");
+  }
+  const h5::Reader reader = formats::open_checked(file, kind);
+  const formats::Mesh mesh = formats::read_mesh(reader);
+  std::vector<MeshWall> walls;
+  for (const auto& [name, boundary] : mesh.boundaries) {
+    if (boundary.flap.empty()) continue;
+    MeshWall wall;
+    wall.name = name;
+    wall.flap = boundary.flap;
+    wall.side = boundary.side;
+    const auto& e = boundary.edges;
+    if (e.rows() == 0) continue;
+    wall.nodes.push_back(e(0, 0));
+    for (Eigen::Index k = 0; k < e.rows(); ++k) {
+      if (e(k, 0) != wall.nodes.back()) {
+        reader.fail("/mesh/boundaries/" + name + "/edges",
+                    "edge " + std::to_string(k) + " does not continue the previous one");
+      }
+      wall.nodes.push_back(e(k, 1));
+    }
+    for (std::int64_t n : wall.nodes) wall.points.emplace_back(mesh.points(n, 0), mesh.points(n, 1));
+    walls.push_back(std::move(wall));
+  }
+  return walls;
+}
+
+Structure read_structure(const std::filesystem::path& file) {
+  const h5::Reader reader = formats::open_checked(file, "structure");
+  Structure out;
+  out.header = formats::read_header(reader);
+  const h5::MatrixXdR points = reader.read_matrix("/beam/points", std::nullopt, 3);
+  const auto n = static_cast<std::size_t>(points.rows());
+  const h5::MatrixXdR displacement = reader.read_matrix("/fields/point/displacement", n, 3);
+  const h5::MatrixXdR rotation = reader.read_matrix("/fields/point/rotation", n, 3);
+  for (const std::string& name : reader.children("/flaps")) {
+    const std::string g = "/flaps/" + name;
+    const std::vector<std::int64_t> nodes =
+        reader.read_index_vector(g + "/nodes", std::nullopt, 0, static_cast<std::int64_t>(n));
+    if (nodes.size() < 2) reader.fail(g + "/nodes", "fewer than two beam nodes");
+    StructureFlap flap;
+    for (std::int64_t node : nodes) {
+      flap.points.emplace_back(points(node, 0), points(node, 1));
+      flap.motion.displacement.emplace_back(displacement(node, 0), displacement(node, 1));
+      flap.motion.rotation.push_back(wiener_milenkovic_angle(rotation(node, 2)));
+    }
+    out.flaps[name] = std::move(flap);
+  }
+  return out;
+}
+
+void write_loads(const std::filesystem::path& file, const LoadsFile& loads,
+                 const formats::Provenance& provenance) {
+  h5::Writer writer(file);
+  formats::write_header(writer, "loads", loads.header);
+  writer.set_attr("/", "method", method_name(loads.method));
+  writer.set_attr("/", "load_basis", loads.load_basis);
+  for (const auto& flap : loads.flaps) {
+    const std::string g = "/flaps/" + flap.name;
+    const FlapLoads& l = flap.loads;
+    writer.write(g + "/s", l.arc_length, "m", "arc length of each beam node");
+    writer.write(g + "/distributed_force", rows3(l.distributed_force), "N/m",
+                 "force per unit beam length at each node, over the flap width");
+    h5::MatrixXdR m = h5::MatrixXdR::Zero(static_cast<Eigen::Index>(l.distributed_moment.size()), 3);
+    for (std::size_t i = 0; i < l.distributed_moment.size(); ++i) m(static_cast<Eigen::Index>(i), 2) = l.distributed_moment[i];
+    writer.write(g + "/distributed_moment", m, "N", "moment per unit beam length at each node");
+    writer.write(g + "/nodal_force", rows3(l.nodal_force), "N", "consistent nodal forces");
+    for (std::size_t i = 0; i < l.nodal_moment.size(); ++i) m(static_cast<Eigen::Index>(i), 2) = l.nodal_moment[i];
+    writer.write(g + "/nodal_moment", m, "N m", "consistent nodal moments");
+    writer.set_attr(g, "width", flap.width);
+    writer.set_attr(g, "total_force", std::vector<double>{l.traces.force.x(), l.traces.force.y(), 0.0});
+    writer.set_attr(g, "total_moment", std::vector<double>{0.0, 0.0, l.traces.moment});
+    writer.set_attr(g, "mapped_force", std::vector<double>{l.mapped.force.x(), l.mapped.force.y(), 0.0});
+    writer.set_attr(g, "mapped_moment", std::vector<double>{0.0, 0.0, l.mapped.moment});
+    std::string names;
+    for (const auto& t : flap.traces) names += (names.empty() ? "" : " ") + t;
+    writer.set_attr(g, "traces", names);
+  }
+  formats::write_provenance(writer, provenance);
+  writer.commit();
+}
+
+void write_walldisp(const std::filesystem::path& file, const formats::Header& header,
+                    const std::string& wall_source, const std::vector<WallDisplacement>& walls,
+                    const formats::Provenance& provenance) {
+  h5::Writer writer(file);
+  formats::write_header(writer, "walldisp", header);
+  writer.set_attr("/", "wall_source", wall_source);
+  for (const auto& wall : walls) {
+    const std::string g = "/walls/" + wall.name;
+    writer.write(g + "/x0", rows3(wall.points, false), "m", "undeformed wall point");
+    writer.write(g + "/displacement", rows3(wall.displacement, false), "m", "displacement");
+    if (!wall.nodes.empty()) writer.write(g + "/node", wall.nodes, "1", "flow mesh node of each point");
+    writer.set_attr(g, "flap", wall.flap);
+    writer.set_attr(g, "side", wall.side);
+  }
+  formats::write_provenance(writer, provenance);
+  writer.commit();
+}
+
+}  // namespace tfmb::loads
