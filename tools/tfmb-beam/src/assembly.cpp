@@ -59,6 +59,14 @@ Assembly::Assembly(const Model& model) : model_(model) {
   num_joint_dofs_ = dof - 6 * nn;
   num_multipliers_ = mult;
   constraint_scale_ = typical_stiffness();
+  if (!model.nodes.empty()) {
+    Eigen::Vector3d lo = model.nodes[0].position, hi = lo;
+    for (const Node& nd : model.nodes) {
+      lo = lo.cwiseMin(nd.position);
+      hi = hi.cwiseMax(nd.position);
+    }
+    step_limit_ = 1e6 * std::max(1.0, (hi - lo).norm());
+  }
 }
 
 State Assembly::initial_state() const {

@@ -10,7 +10,7 @@
 
 namespace tfmb::beam {
 
-Eigen::VectorXd NewtonLinearSolver::solve(int n, const Triplets& k, const Eigen::VectorXd& r) {
+Eigen::VectorXd NewtonLinearSolver::solve(int n, const Triplets& k, const Eigen::VectorXd& r, double step_limit) {
   matrix_.resize(n, n);
   matrix_.setFromTriplets(k.begin(), k.end());
   matrix_.makeCompressed();
@@ -30,7 +30,8 @@ Eigen::VectorXd NewtonLinearSolver::solve(int n, const Triplets& k, const Eigen:
     // A pivot that vanished only up to round-off shows up as an absurd step.
     if (!singular) {
       const double resid = (matrix_ * dx + r).norm();
-      singular = resid > 1e-6 * (r.norm() + 1e-300) && resid > 1e-8 * matrix_.norm() * dx.norm();
+      singular = (resid > 1e-6 * (r.norm() + 1e-300) && resid > 1e-8 * matrix_.norm() * dx.norm()) ||
+                 dx.cwiseAbs().maxCoeff() > step_limit;
     }
   }
   if (singular) throw ModelError(describe_singularity(matrix_));

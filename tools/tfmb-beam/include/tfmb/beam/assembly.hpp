@@ -69,6 +69,10 @@ class Assembly {
   Eigen::VectorXd joint_multipliers(const State& state, int j) const;
   std::vector<JointOutput> joint_outputs(const State& state, int j, double load_factor = 1.0) const;
 
+  /// Largest sensible Newton correction: 1e6 times the model's extent (and at least 1e6), for
+  /// singularity detection.
+  double step_limit() const { return step_limit_; }
+
   /// Name of global unknown i ("node 12 rotation z", "revolute joint 'h' angle", ...).
   std::string dof_name(int i) const;
 
@@ -81,6 +85,7 @@ class Assembly {
   int num_joint_dofs_ = 0;
   int num_multipliers_ = 0;
   double constraint_scale_ = 1.0;
+  double step_limit_ = 1e6;
 };
 
 }  // namespace tfmb::beam

@@ -17,7 +17,9 @@ class NewtonLinearSolver {
   explicit NewtonLinearSolver(std::function<std::string(int)> name_of) : name_of_(std::move(name_of)) {}
   /// Solves K dx = -r. Throws ModelError naming the free unknowns if K is singular (mechanism or
   /// redundant constraint).
-  Eigen::VectorXd solve(int n, const Triplets& k, const Eigen::VectorXd& r);
+  /// `step_limit`: a correction larger than this (infinity norm) comes from a pivot that vanished
+  /// up to round-off, i.e. a singular matrix.
+  Eigen::VectorXd solve(int n, const Triplets& k, const Eigen::VectorXd& r, double step_limit = 1e300);
   /// Message describing the null space of a singular matrix (dense analysis; small systems only).
   std::string describe_singularity(const Eigen::SparseMatrix<double>& k) const;
 

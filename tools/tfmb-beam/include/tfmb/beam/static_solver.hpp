@@ -14,7 +14,8 @@ struct StaticOptions {
   int max_steps = 1000;            // including cut-back retries
   int max_iterations = 30;         // Newton iterations per step
   int max_cutbacks = 12;           // halvings of a step before giving up
-  double tolerance = 1e-10;        // ||residual|| <= tolerance * force scale
+  double tolerance = 1e-10;        // ||residual|| <= tolerance * force scale, or
+  double increment_tolerance = 1e-10;  // ||correction|| <= this * ||increment of the step||
   double final_load_factor = 1.0;
   /// Called after every converged step with (load factor, state).
   std::function<void(double, const State&)> on_step;
