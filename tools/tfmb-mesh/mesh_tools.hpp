@@ -1,0 +1,84 @@
+// tfmb-mesh: fluid mesh (gmsh for the triangles, our own structured boundary-layer strips),
+// solid mesh of the flap walls, and deformation of a fluid mesh by a wall displacement.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "model.hpp"
+#include "tfmb/common/log.hpp"
+#include "tfmb/formats/files.hpp"
+
+namespace tfmb::mesh {
+
+using formats::Mesh;
+using input::Model;
+
+// --- quality -------------------------------------------------------------------------------
+struct Quality {
+  double min_angle = 180.0;          // [deg] smallest interior angle of any cell
+  double max_aspect_ratio = 1.0;     // [1] longest over shortest edge of a cell, largest
+  double min_area = 0.0;             // [m^2] smallest corner-triangle area (quads: 4 corners)
+  std::int64_t worst_cell = -1;      // cell with min_area
+  std::size_t invalid_cells = 0;     // cells with a non-positive corner area
+};
+Quality mesh_quality(const Mesh& mesh);
+// Smallest signed area of the corner triangles of a cell (positive: valid, counter-clockwise).
+double cell_min_corner_area(const h5::MatrixXdR& points, const Mesh& mesh, std::int64_t cell);
+// Reorders cells to counter-clockwise where they are clockwise.
+void orient_counter_clockwise(Mesh& mesh);
+
+// --- flow mesh -----------------------------------------------------------------------------
+struct FlowMeshOptions {
+  double scale = 0.0;          // 0: the model's mesh.scale; else overrides it
+  int algorithm = 6;           // gmsh 2D algorithm (5 Delaunay, 6 Frontal-Delaunay)
+};
+struct FlowMeshReport {
+  Quality quality;
+  int boundary_layers = 0;
+  double first_layer_height = 0.0;  // [m]
+  double estimated_yplus = 0.0;
+  double seconds = 0.0;
+};
+// Builds the fluid mesh of a model's flow domain (nozzle: quad layers on walls + gmsh triangles;
+// channel and flatplate: structured quads). Boundaries named as the model's domain boundaries.
+Mesh build_flow_mesh(const Model& model, const FlowMeshOptions& options, FlowMeshReport& report,
+                     const Logger& log);
+
+// --- solid mesh ----------------------------------------------------------------------------
+struct SolidLink {
+  std::vector<std::string> flap_names;
+  std::vector<std::int64_t> cell_flap, cell_element;
+  std::vector<double> point_thickness_coordinate;  // [m] positive towards the outer surface
+};
+Mesh build_solid_mesh(const Model& model, SolidLink& link);
+
+// --- deformation ---------------------------------------------------------------------------
+struct WallDisplacement {
+  std::string boundary;
+  input::Polyline x0;                // [m]
+  std::vector<Eigen::Vector2d> displacement;  // [m]
+};
+std::vector<WallDisplacement> read_walldisp(const std::filesystem::path& file);
+struct DeformReport {
+  Quality quality;
+  double admissible_fraction = 1.0;  // largest fraction of the displacement keeping cells valid
+  std::size_t moved_wall_nodes = 0;
+};
+// Moves the wall nodes of the named boundaries by the interpolated displacement and the rest by
+// inverse-distance weighting (Luke, Collins & Blades 2012). Throws BadInput (with the admissible
+// fraction found by bisection) if a cell would invert.
+Mesh deform_mesh(const Mesh& mesh, const std::vector<WallDisplacement>& walls, DeformReport& report);
+
+// --- commands ------------------------------------------------------------------------------
+struct Options {
+  std::string command;  // flow | solid | deform
+  std::filesystem::path input, walldisp, output;
+  double scale = 0.0;
+  int algorithm = 6;
+  std::string command_line;
+};
+int run(const Options& options, const Logger& log);
+
+}  // namespace tfmb::mesh
