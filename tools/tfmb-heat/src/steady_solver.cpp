@@ -3,6 +3,7 @@
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseLU>
 
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
@@ -21,7 +22,10 @@ NewtonReport newton_solve(const Assembler& assembler, const TimeTerm& time_term,
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
   for (int iteration = 1; iteration <= settings.max_iterations; ++iteration) {
+    auto clock = std::chrono::steady_clock::now();
     assembler.assemble(t, time_term, residual, &tangent, settings.tangent);
+    report.assembly_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - clock).count();
+    clock = std::chrono::steady_clock::now();
     for (Eigen::Index d = 0; d < t.size(); ++d) {
       if (!std::isnan(dirichlet[d])) residual[d] = 0.0;
     }
@@ -42,6 +46,7 @@ NewtonReport newton_solve(const Assembler& assembler, const TimeTerm& time_term,
       }
       update = ldlt.solve(-residual);
     }
+    report.solve_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - clock).count();
     double largest = update.lpNorm<Eigen::Infinity>();
     if (!std::isfinite(largest)) throw std::runtime_error("Newton: non-finite temperature update");
     if (largest > settings.max_update) update *= settings.max_update / largest;

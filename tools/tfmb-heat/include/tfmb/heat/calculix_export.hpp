@@ -1,7 +1,7 @@
 #pragma once
 // Writes a planar steady heat-transfer problem as a CalculiX (ccx) input deck, for side-by-side
 // comparisons, and reads the nodal temperatures back from ccx's .dat output.
-// CalculiX 2.x User's Manual (G. Dhondt): *HEAT TRANSFER, DC2D3/DC2D4 elements, *FILM,
+// CalculiX 2.x User's Manual (G. Dhondt): *HEAT TRANSFER, CPS3/CPS4 plane elements, *FILM,
 // *RADIATE, *DFLUX, *CONDUCTIVITY, *PHYSICAL CONSTANTS, *NODE PRINT (NT).
 #include "tfmb/heat/problem.hpp"
 

@@ -39,6 +39,8 @@ struct NewtonReport {
   bool converged = false;
   std::vector<double> max_update;     // [K] per iteration
   std::vector<double> residual_norm;  // [W/m] infinity norm of the free-node residual
+  double assembly_seconds = 0.0;      // wall time in residual and tangent assembly
+  double solve_seconds = 0.0;         // wall time in sparse factorisation and solution
 };
 
 }  // namespace tfmb::heat
