@@ -373,7 +373,7 @@ SolveReport FlowSolver::solve() {
   std::vector<State> u_good = u_;
   double cfl = settings_.cfl_start;
   double cfl_scale = 1.0;
-  double r_max = 0.0;
+  double r_max = settings_.residual_reference;
   double r_min = std::numeric_limits<double>::infinity();
   int last_minimum = 0;
   limiter_frozen_ = false;
@@ -409,7 +409,8 @@ SolveReport FlowSolver::solve() {
     rec.iteration = it;
     rec.residual = rnorm;
     rec.cfl = cfl;
-    if (report.residual_drop <= settings_.residual_drop && it > 1) {
+    report.residual_reference = r_max;
+    if (report.residual_drop <= settings_.residual_drop && (it > 1 || settings_.residual_reference > 0.0)) {
       report.converged = true;
       rec.wall_time = std::chrono::duration<double>(clock::now() - start).count();
       report.history.push_back(rec);

@@ -36,6 +36,9 @@ struct SolverSettings {
   double ser_exponent = 1.0;      // CFL = cfl_start * (R_max / R_n)^ser_exponent
   int max_iterations = 500;
   double residual_drop = 1e-8;    // converged when the density residual fell by this factor
+  // Reference density residual for the drop (0: the largest residual of this run). A restart
+  // passes the reference of the run it continues, so a converged state stays converged.
+  double residual_reference = 0.0;
   double linear_tolerance = 0.05; // relative, per nonlinear iteration
   int gmres_restart = 40;
   int gmres_max_iterations = 80;
@@ -61,7 +64,8 @@ struct SolveReport {
   int iterations = 0;
   long linear_iterations = 0;
   int backoffs = 0;            // CFL back-offs after non-physical states
-  double residual_drop = 1.0;  // final density residual / largest density residual
+  double residual_drop = 1.0;  // final density residual / reference density residual
+  double residual_reference = 0.0;  // the reference used (RMS of residual/volume)
   double wall_time = 0.0;      // [s]
   std::vector<IterationRecord> history;
 };

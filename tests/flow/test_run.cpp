@@ -1,0 +1,135 @@
+// tfmb-flow end to end through run(): flowmesh.h5 written with the formats library, flow.h5
+// read back; restart; bad inputs exit with BadInput (code 3).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <sstream>
+
+#include "nparc_case.hpp"
+#include "run.hpp"
+#include "tfmb/common/errors.hpp"
+#include "tfmb/common/h5.hpp"
+#include "tfmb/formats/files.hpp"
+
+using namespace tfmb;
+using namespace tfmb::flow;
+
+namespace {
+
+std::filesystem::path temp_dir() {
+  const auto d = std::filesystem::temp_directory_path() / ("tfmb_flow_run_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(d);
+  return d;
+}
+
+void write_flowmesh(const std::filesystem::path& file, const flow::Mesh& m, bool drop_outlet = false) {
+  formats::Mesh fm;
+  fm.points.resize(static_cast<Eigen::Index>(m.points.size()), 2);
+  for (std::size_t i = 0; i < m.points.size(); ++i) {
+    fm.points(static_cast<Eigen::Index>(i), 0) = m.points[i].x;
+    fm.points(static_cast<Eigen::Index>(i), 1) = m.points[i].y;
+  }
+  fm.triangles.resize(static_cast<Eigen::Index>(m.triangles.size()), 3);
+  for (std::size_t c = 0; c < m.triangles.size(); ++c) {
+    for (int k = 0; k < 3; ++k) fm.triangles(static_cast<Eigen::Index>(c), k) = m.triangles[c][k];
+  }
+  fm.quads.resize(static_cast<Eigen::Index>(m.quads.size()), 4);
+  for (std::size_t c = 0; c < m.quads.size(); ++c) {
+    for (int k = 0; k < 4; ++k) fm.quads(static_cast<Eigen::Index>(c), k) = m.quads[c][k];
+  }
+  const std::map<std::string, std::string> kinds = {
+      {"symmetry", "symmetry"}, {"outlet", "outflow"}, {"wall", "wall"}, {"inlet", "inflow"}};
+  for (const auto& b : m.boundaries) {
+    if (drop_outlet && b.name == "outlet") continue;
+    formats::Boundary fb;
+    fb.kind = kinds.at(b.name);
+    fb.edges.resize(static_cast<Eigen::Index>(b.edges.size()), 2);
+    for (std::size_t e = 0; e < b.edges.size(); ++e) {
+      fb.edges(static_cast<Eigen::Index>(e), 0) = b.edges[e][0];
+      fb.edges(static_cast<Eigen::Index>(e), 1) = b.edges[e][1];
+    }
+    fm.boundaries[b.name] = fb;
+  }
+  h5::Writer w(file);
+  formats::Header header;
+  header.creator = "test";
+  formats::write_header(w, "flowmesh", header);
+  formats::write_mesh(w, fm);
+  w.commit();
+}
+
+RunOptions nozzle_options(const std::filesystem::path& dir) {
+  RunOptions o;
+  o.mesh_file = dir / "flowmesh.h5";
+  o.output = dir / "flow.h5";
+  o.stagnation_pressure = nparc::kP0;
+  o.stagnation_temperature = nparc::kT0;
+  o.ambient_pressure = 0.75 * nparc::kP0;
+  o.throat_area = 1.0 * nparc::kInch;
+  o.settings.max_iterations = 400;
+  o.settings.print_every = 0;
+  return o;
+}
+
+}  // namespace
+
+TEST(FlowRun, NozzleEndToEndAndRestart) {
+  const auto dir = temp_dir();
+  write_flowmesh(dir / "flowmesh.h5", nparc::make_mesh(61, 16));
+  std::ostringstream log_text;
+  const Logger log("tfmb-flow", Verbosity::normal, log_text);
+  RunOptions o = nozzle_options(dir);
+  const RunResult r = run(o, log);
+  ASSERT_TRUE(r.report.converged);
+  const double mdot_exact = Quasi1dNozzle(nparc::area_in, 0, 5, 10, 1.4, 0.75).mass_flow(nparc::kP0, nparc::kT0, 287.05) *
+                            nparc::kInch;
+  EXPECT_NEAR(r.mass_flow, mdot_exact, 0.005 * mdot_exact);
+  EXPECT_NEAR(r.discharge_coefficient, 1.0, 0.005);
+  EXPECT_GT(r.thrust_x, 0.0);
+
+  const h5::Reader f = formats::open_checked(o.output, "flow");  // validates against the schema
+  EXPECT_EQ(f.attr_i64("/convergence", "converged"), 1);
+  const auto p = f.read_vector("/fields/point/pressure", 61 * 16);
+  const auto wall_x = f.read_vector("/walls/wall/x");
+  EXPECT_EQ(wall_x.size(), 61u);
+  for (std::size_t k = 1; k < wall_x.size(); ++k) EXPECT_GT(wall_x[k], wall_x[k - 1]);  // ordered
+  EXPECT_TRUE(std::filesystem::exists(dir / "flow.xdmf"));
+
+  // restart from the converged file: the limiter is evaluated afresh (it was frozen during the
+  // first run), so a few iterations remain, far fewer than from scratch; same solution
+  RunOptions again = o;
+  again.restart_file = o.output;
+  again.output = dir / "flow2.h5";
+  const RunResult r2 = run(again, log);
+  EXPECT_TRUE(r2.report.converged);
+  EXPECT_LT(r2.report.iterations, r.report.iterations / 2);
+  EXPECT_NEAR(r2.mass_flow, r.mass_flow, 1e-4 * r.mass_flow);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(FlowRun, BadInputs) {
+  const auto dir = temp_dir();
+  std::ostringstream log_text;
+  const Logger log("tfmb-flow", Verbosity::quiet, log_text);
+  write_flowmesh(dir / "flowmesh.h5", nparc::make_mesh(21, 6));
+  RunOptions o = nozzle_options(dir);
+  o.settings.max_iterations = 2;
+  // NPR below 1
+  RunOptions low = o;
+  low.ambient_pressure = 2.0 * o.stagnation_pressure;
+  EXPECT_THROW(run(low, log), BadInput);
+  // untagged boundary
+  write_flowmesh(dir / "untagged.h5", nparc::make_mesh(21, 6), true);
+  RunOptions untagged = o;
+  untagged.mesh_file = dir / "untagged.h5";
+  EXPECT_THROW(run(untagged, log), BadInput);
+  // restart of another topology
+  run(o, log);  // writes flow.h5 on the 21 x 6 mesh
+  write_flowmesh(dir / "other.h5", nparc::make_mesh(22, 6));
+  RunOptions other = o;
+  other.mesh_file = dir / "other.h5";
+  other.restart_file = o.output;
+  other.output = dir / "other_flow.h5";
+  EXPECT_THROW(run(other, log), BadInput);
+  std::filesystem::remove_all(dir);
+}

@@ -1,0 +1,64 @@
+// tfmb-flow: steady 2D compressible flow (Euler or laminar Navier-Stokes, planar or
+// axisymmetric) on a mixed triangle/quad flow mesh.
+//
+// Sample runs:
+//   tfmb-flow flowmesh.h5 --p0 5.5e5 --T0 294 --ambient-pressure 101330 -o flow.h5
+//   tfmb-flow flowmesh.h5 --p0 5.5e5 --T0 294 --restart flow_prev.h5 -o flow.h5
+//   tfmb-flow flowmesh.h5 --p0 2e5 --T0 300 --model laminar --wall-temperature 400 -o flow.h5
+#include <iostream>
+
+#include "run.hpp"
+#include "tfmb/common/cli.hpp"
+#include "tfmb/common/errors.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"Steady compressible flow on a flow mesh (tfmb/flowmesh) -> flow file (tfmb/flow).",
+               "tfmb-flow"};
+  tfmb::cli::CommonOptions common;
+  tfmb::cli::add_common_options(app, common, true);
+  tfmb::flow::RunOptions o;
+  std::filesystem::path restart;
+  std::optional<double> wall_temperature, throat_area;
+  app.add_option("mesh", o.mesh_file, "flow mesh (tfmb/flowmesh)")->required()->check(CLI::ExistingFile);
+  tfmb::cli::add_output_option(app, o.output, "flow file (tfmb/flow)");
+  app.add_option("--restart", restart, "start from this flow file (same mesh topology, e.g. before a wall deformation)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--p0", o.stagnation_pressure, "[Pa] inflow total pressure");
+  app.add_option("--T0", o.stagnation_temperature, "[K] inflow total temperature");
+  app.add_option("--ambient-pressure", o.ambient_pressure, "[Pa] outflow and far-field static pressure")
+      ->capture_default_str();
+  app.add_option("--ambient-temperature", o.ambient_temperature, "[K] far-field static temperature")
+      ->capture_default_str();
+  app.add_option("--freestream-mach", o.freestream_mach, "[-] far-field Mach number along +x")->capture_default_str();
+  app.add_option("--inflow-angle", o.inflow_angle, "[deg] inflow direction from +x")->capture_default_str();
+  app.add_option("--gamma", o.gamma, "[-] ratio of specific heats")->capture_default_str();
+  app.add_option("--gas-constant", o.gas_constant, "[J/(kg K)] specific gas constant")->capture_default_str();
+  app.add_option("--model", o.model, "euler or laminar (Sutherland viscosity, Pr 0.72)")
+      ->check(CLI::IsMember({"euler", "laminar"}))->capture_default_str();
+  app.add_option("--wall-temperature", wall_temperature, "[K] isothermal no-slip walls (laminar; default adiabatic)");
+  app.add_option("--throat-area", throat_area,
+                 "[m] throat height per unit depth (planar) or [m^2] area (axisymmetric) for the discharge coefficient");
+  app.add_option("--order", o.settings.order, "spatial order of the convective fluxes, 1 or 2")
+      ->check(CLI::Range(1, 2))->capture_default_str();
+  app.add_option("--max-iterations", o.settings.max_iterations, "nonlinear iteration limit")->capture_default_str();
+  app.add_option("--residual-drop", o.settings.residual_drop,
+                 "[-] converged when the density residual fell by this factor")->capture_default_str();
+  app.add_option("--cfl-start", o.settings.cfl_start, "[-] initial CFL number")->capture_default_str();
+  app.add_option("--cfl-max", o.settings.cfl_max, "[-] largest CFL number of the ramp")->capture_default_str();
+  app.add_option("--print-every", o.settings.print_every, "residual line on stderr every N iterations (0: none)")
+      ->capture_default_str();
+  o.settings.print_every = 10;
+
+  const std::string command = tfmb::cli::command_line(argc, argv);
+  return tfmb::cli::run_main(app, argc, argv, [&] {
+    tfmb::Logger logger("tfmb-flow", common.verbosity());
+    if (!restart.empty()) o.restart_file = restart;
+    o.wall_temperature = wall_temperature;
+    o.throat_area = throat_area;
+    o.settings.threads = common.threads > 0 ? common.threads : 1;
+    if (common.quiet) o.settings.print_every = 0;
+    o.command_line = command;
+    const tfmb::flow::RunResult r = tfmb::flow::run(o, logger);
+    return r.report.converged ? 0 : 1;
+  });
+}

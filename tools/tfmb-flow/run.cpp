@@ -1,0 +1,319 @@
+#include "run.hpp"
+
+#include <cmath>
+#include <numeric>
+#include <sstream>
+
+#include "exact_nozzle.hpp"
+#include "tfmb/common/cli.hpp"
+#include "tfmb/common/errors.hpp"
+#include "tfmb/common/h5.hpp"
+#include "tfmb/formats/files.hpp"
+#include "tfmb/formats/schema.hpp"
+
+namespace tfmb::flow {
+
+namespace {
+
+std::string num(double v) {
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+
+struct LoadedMesh {
+  Mesh mesh;                       // solver numbering
+  formats::Mesh file_mesh;         // as read
+  std::vector<std::string> kinds;  // per mesh.boundaries
+  std::vector<int> new_of_old;
+  Geometry geometry = Geometry::planar;
+  double depth = 1.0;
+};
+
+LoadedMesh load_mesh(const std::filesystem::path& file, bool renumber) {
+  const h5::Reader reader = formats::open_checked(file, "flowmesh");
+  LoadedMesh out;
+  const formats::Header header = formats::read_header(reader);
+  out.geometry = header.geometry == "axisymmetric" ? Geometry::axisymmetric : Geometry::planar;
+  out.depth = header.depth;
+  out.file_mesh = formats::read_mesh(reader);
+  const auto& fm = out.file_mesh;
+  Mesh& m = out.mesh;
+  m.points.resize(fm.node_count());
+  for (std::size_t i = 0; i < fm.node_count(); ++i) m.points[i] = {fm.points(i, 0), fm.points(i, 1)};
+  for (Eigen::Index r = 0; r < fm.triangles.rows(); ++r) {
+    m.triangles.push_back({static_cast<int>(fm.triangles(r, 0)), static_cast<int>(fm.triangles(r, 1)),
+                           static_cast<int>(fm.triangles(r, 2))});
+  }
+  for (Eigen::Index r = 0; r < fm.quads.rows(); ++r) {
+    m.quads.push_back({static_cast<int>(fm.quads(r, 0)), static_cast<int>(fm.quads(r, 1)),
+                       static_cast<int>(fm.quads(r, 2)), static_cast<int>(fm.quads(r, 3))});
+  }
+  for (const auto& [name, b] : fm.boundaries) {
+    if (b.kind.rfind("solid_", 0) == 0) {
+      throw BadInput(file.string() + ": /mesh/boundaries/" + name + ": kind '" + b.kind +
+                     "' belongs to a solid mesh; give tfmb-flow the flow mesh");
+    }
+    BoundaryCurve c{name, {}};
+    for (Eigen::Index r = 0; r < b.edges.rows(); ++r) {
+      c.edges.push_back({static_cast<int>(b.edges(r, 0)), static_cast<int>(b.edges(r, 1))});
+    }
+    m.boundaries.push_back(std::move(c));
+    out.kinds.push_back(b.kind);
+  }
+  try {
+    check_mesh(m);
+  } catch (const std::invalid_argument& e) {
+    throw BadInput(file.string() + ": " + e.what());
+  }
+  out.new_of_old.resize(m.points.size());
+  std::iota(out.new_of_old.begin(), out.new_of_old.end(), 0);
+  if (renumber) {
+    out.new_of_old = rcm_ordering(m);
+    renumber_nodes(m, out.new_of_old);
+  }
+  return out;
+}
+
+std::vector<State> read_restart(const std::filesystem::path& file, const LoadedMesh& lm) {
+  const h5::Reader reader = formats::open_checked(file, "flow");
+  const formats::Mesh rm = formats::read_mesh(reader);
+  const auto& fm = lm.file_mesh;
+  if (rm.node_count() != fm.node_count() || rm.triangles != fm.triangles || rm.quads != fm.quads) {
+    throw BadInput(file.string() + ": /mesh: restart mesh has a different topology (" +
+                   std::to_string(rm.node_count()) + " nodes, " + std::to_string(rm.cell_count()) +
+                   " cells) than the flow mesh (" + std::to_string(fm.node_count()) + " nodes, " +
+                   std::to_string(fm.cell_count()) + " cells)");
+  }
+  const std::size_t n = fm.node_count();
+  const auto rho = reader.read_vector("/fields/point/density", n);
+  const auto vel = reader.read_matrix("/fields/point/velocity", n, 3);
+  const auto p = reader.read_vector("/fields/point/pressure", n);
+  std::vector<State> w(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!(rho[k] > 0.0) || !(p[k] > 0.0) || !std::isfinite(vel(k, 0)) || !std::isfinite(vel(k, 1))) {
+      throw BadInput(file.string() + ": /fields/point: node " + std::to_string(k) +
+                     " has a non-physical state (density and pressure must be positive and finite)");
+    }
+    w[lm.new_of_old[k]] = {rho[k], vel(k, 0), vel(k, 1), p[k]};
+  }
+  return w;
+}
+
+}  // namespace
+
+RunResult run(const RunOptions& o, const Logger& log) {
+  require(o.gamma > 1.0 && o.gamma < 2.0, "--gamma must lie in (1, 2), got " + num(o.gamma));
+  require(o.gas_constant > 0.0, "--gas-constant must be positive");
+  require(o.ambient_pressure > 0.0, "--ambient-pressure must be positive");
+  require(o.model == "euler" || o.model == "laminar", "--model must be euler or laminar, got '" + o.model + "'");
+  LoadedMesh lm = load_mesh(o.mesh_file, o.renumber);
+  const bool viscous = o.model == "laminar";
+  const PerfectGas gas{o.gamma, o.gas_constant};
+
+  const double t_inf = o.ambient_temperature;
+  const double c_inf = std::sqrt(o.gamma * o.gas_constant * t_inf);
+  const State w_inf{o.ambient_pressure / (o.gas_constant * t_inf), o.freestream_mach * c_inf, 0.0,
+                    o.ambient_pressure};
+  std::vector<BoundaryCondition> bcs;
+  bool has_inflow = false, has_farfield = false;
+  std::vector<int> outflow_curves, wall_curves;
+  for (std::size_t b = 0; b < lm.kinds.size(); ++b) {
+    const std::string& kind = lm.kinds[b];
+    const std::string where = o.mesh_file.string() + ": /mesh/boundaries/" + lm.mesh.boundaries[b].name;
+    BoundaryCondition bc;
+    if (kind == "inflow") {
+      require(o.stagnation_pressure > 0.0 && o.stagnation_temperature > 0.0,
+              where + ": an inflow boundary needs --p0 and --T0");
+      require(o.stagnation_pressure >= o.ambient_pressure,
+              "nozzle pressure ratio p0/p_ambient = " + num(o.stagnation_pressure / o.ambient_pressure) +
+                  " is below 1; raise --p0 or lower --ambient-pressure");
+      bc.kind = BcKind::stagnation_inflow;
+      bc.total_pressure = o.stagnation_pressure;
+      bc.total_temperature = o.stagnation_temperature;
+      bc.flow_angle = o.inflow_angle * std::acos(-1.0) / 180.0;
+      has_inflow = true;
+    } else if (kind == "farfield") {
+      bc.kind = BcKind::farfield;
+      bc.freestream = w_inf;
+      has_farfield = true;
+    } else if (kind == "outflow") {
+      bc.kind = BcKind::pressure_outflow;
+      bc.static_pressure = o.ambient_pressure;
+      outflow_curves.push_back(static_cast<int>(b));
+    } else if (kind == "wall") {
+      if (viscous) {
+        bc.kind = o.wall_temperature ? BcKind::wall_isothermal : BcKind::wall_adiabatic;
+        if (o.wall_temperature) bc.wall_temperature = *o.wall_temperature;
+      } else {
+        bc.kind = BcKind::slip_wall;
+      }
+      wall_curves.push_back(static_cast<int>(b));
+    } else if (kind == "slip_wall") {
+      bc.kind = BcKind::slip_wall;
+      wall_curves.push_back(static_cast<int>(b));
+    } else if (kind == "symmetry" || kind == "axis") {
+      bc.kind = BcKind::symmetry;
+    } else {
+      throw BadInput(where + ": unknown boundary kind '" + kind + "'");
+    }
+    bcs.push_back(bc);
+  }
+
+  SolverSettings settings = o.settings;
+  settings.viscous = viscous;
+  const double p_ref = has_inflow ? o.stagnation_pressure : o.ambient_pressure;
+  const double t_ref = has_inflow ? o.stagnation_temperature : t_inf;
+  const double rho_ref = p_ref / (o.gas_constant * t_ref);
+  const double c_ref = std::sqrt(o.gamma * o.gas_constant * t_ref);
+  settings.reference_state = {rho_ref, c_ref, c_ref, p_ref};
+
+  if (o.restart_file && settings.residual_reference <= 0.0) {
+    // continue the residual drop of the run being restarted
+    const h5::Reader reader(*o.restart_file);
+    if (reader.has_attr("/convergence", "residual_reference")) {
+      settings.residual_reference = reader.attr_f64("/convergence", "residual_reference");
+    }
+  }
+  FlowSolver solver(lm.mesh, lm.geometry, gas, bcs, settings);
+  if (o.restart_file) {
+    solver.set_primitive(read_restart(*o.restart_file, lm));
+    log.info("restart from " + o.restart_file->string());
+  } else if (has_farfield || !has_inflow) {
+    solver.set_uniform(w_inf);
+  } else {
+    // internal flow: start at Mach 0.2 from the inflow total conditions, along the inflow angle
+    const double m0 = 0.2;
+    const double t = o.stagnation_temperature / (1.0 + 0.5 * (o.gamma - 1.0) * m0 * m0);
+    const double p = o.stagnation_pressure * std::pow(t / o.stagnation_temperature, o.gamma / (o.gamma - 1.0));
+    const double a = o.inflow_angle * std::acos(-1.0) / 180.0;
+    const double u = m0 * std::sqrt(o.gamma * o.gas_constant * t);
+    solver.set_uniform({p / (o.gas_constant * t), u * std::cos(a), u * std::sin(a), p});
+  }
+  log.info("mesh " + o.mesh_file.string() + ": " + std::to_string(lm.mesh.num_points()) + " nodes, " +
+           std::to_string(lm.mesh.triangles.size()) + " triangles, " + std::to_string(lm.mesh.quads.size()) +
+           " quads; " + o.model + (lm.geometry == Geometry::axisymmetric ? ", axisymmetric" : ", planar"));
+
+  RunResult result;
+  result.report = solver.solve();
+  const SolveReport& rep = result.report;
+
+  // Integrals: mass flow and gross thrust through the outflow boundaries,
+  // F = sum (rho u (u.n) + (p - p_amb) n) dS (Sutton and Biblarz 2017, eq. 2-14).
+  const double scale = lm.geometry == Geometry::axisymmetric ? 2.0 * std::acos(-1.0) : 1.0;
+  for (int b : outflow_curves) {
+    const BoundaryIntegral bi = solver.boundary_integral(b);
+    result.mass_flow += scale * bi.mass_flow;
+    result.thrust_x += scale * bi.force.x;
+    result.thrust_y += scale * bi.force.y;
+    for (const auto& face : solver.dual().boundary_faces) {
+      if (face.curve != b) continue;
+      result.thrust_x -= scale * o.ambient_pressure * face.normal.x;
+      result.thrust_y -= scale * o.ambient_pressure * face.normal.y;
+    }
+  }
+  if (o.throat_area && has_inflow) {
+    // ideal: isentropic with a sonic throat (the flow.md definition)
+    const double g = o.gamma;
+    const double mach = 1.0;
+    const double t = o.stagnation_temperature / (1.0 + 0.5 * (g - 1.0) * mach * mach);
+    const double p = o.stagnation_pressure * std::pow(t / o.stagnation_temperature, g / (g - 1.0));
+    const double ideal = p / (o.gas_constant * t) * mach * std::sqrt(g * o.gas_constant * t) * *o.throat_area;
+    result.discharge_coefficient = result.mass_flow / ideal;
+  }
+
+  // Output in the numbering of the input mesh.
+  const auto w_solver = solver.primitive();
+  const std::size_t n = lm.file_mesh.node_count();
+  std::vector<double> rho(n), p(n), temp(n), mach(n);
+  h5::MatrixXdR vel(n, 3);
+  for (std::size_t k = 0; k < n; ++k) {
+    const State& w = w_solver[lm.new_of_old[k]];
+    rho[k] = w[0];
+    p[k] = w[3];
+    temp[k] = gas.temperature(w);
+    mach[k] = std::hypot(w[1], w[2]) / gas.sound_speed(w);
+    vel(k, 0) = w[1];
+    vel(k, 1) = w[2];
+    vel(k, 2) = 0.0;
+  }
+  std::vector<int> old_of_new(n);
+  for (std::size_t k = 0; k < n; ++k) old_of_new[lm.new_of_old[k]] = static_cast<int>(k);
+  {
+    h5::Writer w(o.output);
+    formats::Header header;
+    header.creator = "tfmb-flow " + cli::version();
+    header.geometry = lm.geometry == Geometry::axisymmetric ? "axisymmetric" : "planar";
+    header.depth = lm.depth;
+    formats::write_header(w, "flow", header);
+    formats::write_mesh(w, lm.file_mesh);
+    w.write("/fields/point/density", rho, "kg/m^3");
+    w.write("/fields/point/velocity", vel, "m/s", "u, v, 0");
+    w.write("/fields/point/pressure", p, "Pa", "static pressure");
+    w.write("/fields/point/temperature", temp, "K", "static temperature");
+    w.write("/fields/point/mach", mach, "1");
+    for (int b : wall_curves) {
+      const WallTrace t = solver.wall_trace(b);
+      const std::string g = "/walls/" + lm.mesh.boundaries[b].name;
+      std::vector<std::int64_t> node(t.node.size());
+      for (std::size_t k = 0; k < node.size(); ++k) node[k] = old_of_new[t.node[k]];
+      w.write(g + "/node", node, "1");
+      w.write(g + "/s", t.s, "m", "arc length along the wall");
+      w.write(g + "/x", t.x, "m");
+      w.write(g + "/y", t.y, "m");
+      w.write(g + "/pressure", t.pressure, "Pa", "wall static pressure");
+      w.write(g + "/temperature", t.temperature, "K", "wall temperature");
+      w.write(g + "/wall_shear", t.shear_stress, "Pa", "along the direction of increasing s");
+      w.write(g + "/heat_flux", t.heat_flux, "W/m^2", "into the wall");
+    }
+    w.create_group("/integrals");
+    w.set_attr("/integrals", "mass_flow", result.mass_flow);
+    w.set_attr("/integrals", "thrust_x", result.thrust_x);
+    w.set_attr("/integrals", "thrust_y", result.thrust_y);
+    w.set_attr("/integrals", "thrust_angle", std::atan2(result.thrust_y, result.thrust_x) * 180.0 / std::acos(-1.0));
+    w.set_attr("/integrals", "discharge_coefficient", result.discharge_coefficient);
+    w.create_group("/conditions");
+    w.set_attr("/conditions", "stagnation_pressure", o.stagnation_pressure);
+    w.set_attr("/conditions", "stagnation_temperature", o.stagnation_temperature);
+    w.set_attr("/conditions", "ambient_pressure", o.ambient_pressure);
+    w.set_attr("/conditions", "gamma", o.gamma);
+    w.set_attr("/conditions", "gas_constant", o.gas_constant);
+    w.create_group("/convergence");
+    w.set_attr("/convergence", "converged", static_cast<std::int64_t>(rep.converged ? 1 : 0));
+    w.set_attr("/convergence", "criterion",
+               "density residual (RMS of residual/volume) below " + num(settings.residual_drop) +
+                   " of its largest value");
+    w.set_attr("/convergence", "iterations", static_cast<std::int64_t>(rep.iterations));
+    w.set_attr("/convergence", "residual_reference", rep.residual_reference);
+    std::vector<double> history;
+    const State first = rep.history.empty() ? State{1, 1, 1, 1} : rep.history.front().residual;
+    for (const auto& rec : rep.history) {
+      for (int v = 0; v < 4; ++v) history.push_back(first[v] > 0.0 ? rec.residual[v] / first[v] : 0.0);
+    }
+    w.write_array("/convergence/residual_history", history, {rep.history.size(), 4}, "1",
+                  "per iteration: RMS residual of continuity, x-momentum, y-momentum, energy relative to "
+                  "the first iteration");
+    formats::Provenance prov;
+    prov.command_line = o.command_line;
+    std::ostringstream s;
+    s << "model = \"" << o.model << "\"\norder = " << settings.order << "\ncfl_start = " << settings.cfl_start
+      << "\ncfl_max = " << settings.cfl_max << "\nmax_iterations = " << settings.max_iterations
+      << "\nresidual_drop = " << settings.residual_drop << "\nentropy_fix = " << settings.entropy_fix
+      << "\nlimiter = " << (settings.limiter ? "true" : "false") << "\nvenkat_wang = " << settings.venkat_wang
+      << "\nthreads = " << settings.threads << "\n";
+    prov.settings = s.str();
+    prov.inputs = {o.mesh_file};
+    if (o.restart_file) prov.inputs.push_back(*o.restart_file);
+    formats::write_provenance(w, prov);
+    w.commit();
+  }
+  formats::write_xdmf_sidecar(o.output);
+  log.summary("wrote " + o.output.string() + ": " + (rep.converged ? "converged" : "NOT converged") + " in " +
+              std::to_string(rep.iterations) + " iterations (" + std::to_string(rep.linear_iterations) +
+              " linear), residual drop " + num(rep.residual_drop) + ", mass flow " + num(result.mass_flow) +
+              " kg/s, thrust " + num(result.thrust_x) + " N, " + num(rep.wall_time) + " s");
+  return result;
+}
+
+}  // namespace tfmb::flow

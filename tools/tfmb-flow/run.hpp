@@ -1,0 +1,46 @@
+// tfmb-flow as a library call: read flowmesh.h5 (and optionally a restart flow.h5), solve,
+// write flow.h5 with its XDMF sidecar. main.cpp only parses options into RunOptions.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "solver.hpp"
+#include "tfmb/common/log.hpp"
+
+namespace tfmb::flow {
+
+struct RunOptions {
+  std::filesystem::path mesh_file;                    // tfmb/flowmesh
+  std::optional<std::filesystem::path> restart_file;  // tfmb/flow of the same topology
+  std::filesystem::path output;                       // tfmb/flow
+  double stagnation_pressure = 0.0;     // inflow total pressure [Pa]
+  double stagnation_temperature = 0.0;  // inflow total temperature [K]
+  double ambient_pressure = 101325.0;   // outflow and far-field static pressure [Pa]
+  double ambient_temperature = 288.15;  // far-field static temperature [K]
+  double freestream_mach = 0.0;         // far-field Mach number along +x
+  double inflow_angle = 0.0;            // inflow direction from +x [deg]
+  double gamma = 1.4;
+  double gas_constant = 287.05;         // [J/(kg K)]
+  std::string model = "euler";          // euler | laminar
+  std::optional<double> wall_temperature;  // [K] isothermal no-slip walls (laminar); adiabatic if unset
+  std::optional<double> throat_area;    // [m] per unit depth (planar) or [m^2] (axisymmetric), for Cd
+  bool renumber = true;                 // reverse Cuthill-McKee node order inside the solver
+  SolverSettings settings;
+  std::string command_line;
+};
+
+struct RunResult {
+  SolveReport report;
+  double mass_flow = 0.0;       // through the outflow boundaries [kg/(s m)] or [kg/s]
+  double thrust_x = 0.0;        // [N/m] or [N]
+  double thrust_y = 0.0;
+  double discharge_coefficient = 0.0;
+};
+
+// Throws BadInput for invalid inputs; returns the result after writing options.output (also
+// when the solver did not converge: the file is then flagged converged = 0).
+RunResult run(const RunOptions& options, const Logger& logger);
+
+}  // namespace tfmb::flow
