@@ -187,6 +187,10 @@ inline void write_model(const std::filesystem::path& file, const std::vector<Tes
     set_attr(doc, g, "width", f.width);
     if (doc.attributes[g].count("elements")) set_attr(doc, g, "elements", static_cast<double>(f.reference_curve.size() - 1));
   }
+  // A real stress-free temperature (the example's is a placeholder).
+  if (doc.attributes.count("/thermal") && doc.attributes["/thermal"].count("reference_temperature")) {
+    set_attr(doc, "/thermal", "reference_temperature", 293.15);
+  }
   formats::write_document(doc, file);
 }
 

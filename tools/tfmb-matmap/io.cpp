@@ -1,0 +1,149 @@
+#include "io.hpp"
+
+#include <sstream>
+
+#include "tfmb/common/errors.hpp"
+#include "tfmb/common/h5.hpp"
+#include "tfmb/formats/schema.hpp"
+
+namespace tfmb::matmap {
+
+MaterialDatabase read_material_db(const std::filesystem::path& file) {
+  const h5::Reader reader = formats::open_checked(file, "material-db");
+  MaterialDatabase db;
+  if (reader.has_attr("/", "default_titanium")) db.default_titanium = reader.attr_string("/", "default_titanium");
+  for (const std::string& name : reader.children("/materials")) {
+    const std::string g = "/materials/" + name;
+    Material m;
+    m.name = name;
+    m.description = reader.attr_string(g, "description");
+    m.reference_temperature = reader.attr_f64(g, "reference_temperature");
+    m.missing = reader.attr_string(g, "missing");
+    std::stringstream aliases(reader.attr_string(g, "aliases"));
+    for (std::string alias; std::getline(aliases, alias, ',');) {
+      if (!alias.empty()) m.aliases.push_back(alias);
+    }
+    for (const std::string& property : reader.children(g)) {
+      const std::string p = g + "/" + property;
+      PropertyTable t;
+      t.name = property;
+      t.temperature = reader.read_vector(p + "/temperature");
+      t.value = reader.read_vector(p + "/value", t.temperature.size());
+      t.units = reader.attr_string(p + "/value", "units");
+      t.exactness = reader.attr_string(p, "exactness");
+      if (t.temperature.empty()) reader.fail(p + "/temperature", "empty table");
+      for (std::size_t i = 1; i < t.temperature.size(); ++i) {
+        if (!(t.temperature[i] > t.temperature[i - 1])) {
+          reader.fail(p + "/temperature", "not strictly increasing at row " + std::to_string(i));
+        }
+      }
+      m.properties[property] = std::move(t);
+    }
+    db.materials.push_back(std::move(m));
+  }
+  return db;
+}
+
+Model read_model(const std::filesystem::path& file) {
+  const h5::Reader reader = formats::open_checked(file, "model");
+  Model model;
+  model.header = formats::read_header(reader);
+  for (const std::string& name : reader.children("/flaps")) {
+    const std::string g = "/flaps/" + name;
+    ModelFlap flap;
+    flap.name = name;
+    flap.material = reader.attr_string(g, "material");
+    flap.thickness = reader.attr_f64(g, "thickness");
+    flap.width = reader.attr_f64(g, "width");
+    const h5::MatrixXdR curve = reader.read_matrix(g + "/reference_curve", std::nullopt, 2);
+    if (curve.rows() < 2) reader.fail(g + "/reference_curve", "fewer than two beam nodes");
+    flap.elements = static_cast<std::size_t>(curve.rows() - 1);
+    if (!(flap.thickness > 0.0)) reader.fail(g, "thickness must be positive");
+    if (!(flap.width > 0.0)) reader.fail(g, "width must be positive");
+    model.flaps.push_back(flap);
+  }
+  if (reader.has_attr("/thermal", "reference_temperature")) {
+    const double t0 = reader.attr_f64("/thermal", "reference_temperature");
+    if (t0 > 0.0) model.stress_free_temperature = t0;
+  }
+  return model;
+}
+
+std::map<std::string, ThermalFlap> read_thermal(const std::filesystem::path& file) {
+  const h5::Reader reader = formats::open_checked(file, "thermal");
+  std::map<std::string, ThermalFlap> out;
+  if (!reader.is_group("/beam")) reader.fail("/beam", "missing: no per beam element temperatures");
+  for (const std::string& name : reader.children("/beam")) {
+    const std::string g = "/beam/" + name;
+    ThermalFlap flap;
+    // read_vector refuses NaN and infinite values with the dataset's path.
+    flap.mean_temperature = reader.read_vector(g + "/mean_temperature");
+    flap.delta_temperature = reader.read_vector(g + "/delta_temperature", flap.mean_temperature.size());
+    for (std::size_t e = 0; e < flap.mean_temperature.size(); ++e) {
+      if (!(flap.mean_temperature[e] > 0.0)) {
+        reader.fail(g + "/mean_temperature", "element " + std::to_string(e) + ": " +
+                                                 std::to_string(flap.mean_temperature[e]) + " K is not a temperature");
+      }
+    }
+    out[name] = std::move(flap);
+  }
+  return out;
+}
+
+namespace {
+void write_stack(h5::Writer& w, const std::string& path, const std::vector<Matrix6>& m, const std::string& units,
+                 const std::string& description) {
+  std::vector<double> values;
+  for (const Matrix6& a : m) {
+    for (int r = 0; r < 6; ++r) {
+      for (int c = 0; c < 6; ++c) values.push_back(a(r, c));
+    }
+  }
+  w.write_array(path, values, {m.size(), 6, 6}, units, description);
+}
+}  // namespace
+
+void write_materials(const std::filesystem::path& file, const formats::Header& header,
+                     const std::vector<MaterialsFlap>& flaps, const formats::Provenance& provenance) {
+  h5::Writer w(file);
+  formats::write_header(w, "materials", header);
+  for (const MaterialsFlap& f : flaps) {
+    const std::string g = "/flaps/" + f.name;
+    const ElementProperties& e = f.elements;
+    w.write(g + "/temperature", e.temperature, "K", "mean temperature of each beam element");
+    w.write(g + "/delta_temperature", e.delta_temperature, "K", "outer minus inner surface temperature");
+    w.write(g + "/youngs_modulus", e.youngs_modulus, "Pa", "at the element temperature");
+    w.write(g + "/shear_modulus", e.shear_modulus, "Pa", f.shear_modulus_basis);
+    w.write(g + "/poisson_ratio", e.poisson_ratio, "1", "");
+    w.write(g + "/thermal_expansion", e.thermal_expansion, "1/K", "mean coefficient from reference_temperature");
+    w.write(g + "/density", e.density, "kg/m^3", "");
+    if (f.has_strength) {
+      w.write(g + "/yield_strength", e.yield_strength, "Pa", "");
+      w.write(g + "/ultimate_strength", e.ultimate_strength, "Pa", "");
+    }
+    w.write(g + "/allowable_strain", e.allowable_strain, "1", f.allowable_strain_basis);
+    w.write(g + "/thermal_strain", e.thermal_strain, "1", "free thermal strain at the mean temperature");
+    w.write(g + "/thermal_strain_inner", e.thermal_strain_inner, "1", "at the inner surface (T - dT/2)");
+    w.write(g + "/thermal_strain_outer", e.thermal_strain_outer, "1", "at the outer surface (T + dT/2)");
+    w.write(g + "/thermal_curvature", e.thermal_curvature, "1/m",
+            "(thermal_strain_outer - thermal_strain_inner) / thickness, positive towards the outer surface");
+    write_stack(w, g + "/section_stiffness", e.section_stiffness, "N, N m^2", "rectangle thickness x width");
+    write_stack(w, g + "/section_mass", e.section_mass, "kg/m, kg m", "rectangle thickness x width");
+    w.write(g + "/clamped", e.clamped, "1", "1 if a temperature was outside a table and the end value was used");
+    w.set_attr(g, "material", f.material);
+    w.set_attr(g, "material_given", f.material_given);
+    w.set_attr(g, "thickness", f.thickness);
+    w.set_attr(g, "width", f.width);
+    w.set_attr(g, "reference_temperature", f.reference_temperature);
+    w.set_attr(g, "stress_free_temperature", f.stress_free_temperature);
+    w.set_attr(g, "shear_modulus_basis", f.shear_modulus_basis);
+    w.set_attr(g, "allowable_strain_basis", f.allowable_strain_basis);
+    std::int64_t clamped = 0;
+    for (auto c : e.clamped) clamped += c;
+    w.set_attr(g, "clamped_elements", clamped);
+  }
+  formats::write_provenance(w, provenance);
+  w.commit();
+}
+
+}  // namespace tfmb::matmap

@@ -1,0 +1,42 @@
+// tfmb-matmap: beam element temperatures -> material properties, section stiffness and mass,
+// thermal strain and curvature.
+//
+// Sample runs:
+//   tfmb-matmap thermal.h5 model.h5 --db materials-db.h5 -o materials.h5
+//   tfmb-matmap thermal.h5 model.h5 --db materials-db.h5 --clamp -o materials.h5   # flag, do not refuse
+#include <iostream>
+
+#include "run.hpp"
+#include "tfmb/common/cli.hpp"
+
+#ifndef TFMB_DEFAULT_MATERIAL_DB
+#define TFMB_DEFAULT_MATERIAL_DB "materials-db.h5"
+#endif
+
+int main(int argc, char** argv) {
+  CLI::App app{"Material properties of every beam element at its temperature (tfmb/materials).",
+               "tfmb-matmap"};
+  tfmb::cli::CommonOptions common;
+  tfmb::cli::add_common_options(app, common);
+  tfmb::matmap::Options options;
+  options.database_file = TFMB_DEFAULT_MATERIAL_DB;
+  app.add_option("thermal", options.thermal_file, "thermal.h5: per beam element temperatures")->required();
+  app.add_option("model", options.model_file, "model.h5: flap materials and sections")->required();
+  app.add_option("--db", options.database_file, "material database (tfmb/material-db)")->capture_default_str();
+  tfmb::cli::add_output_option(app, options.output, "materials file (tfmb/materials)");
+  app.add_flag("--clamp", options.clamp,
+               "outside a property table use its end value and flag the element (default: exit 3)");
+  app.add_option("--stress-free-temperature", options.stress_free_temperature,
+                 "[K] temperature of zero thermal strain (default: the model's /thermal reference "
+                 "temperature, else the material's CTE reference temperature)");
+  app.add_option("--poisson-ratio", options.poisson_ratio,
+                 "[1] for materials the database has no Poisson ratio or shear modulus for");
+  app.add_option("--allowable-strain", options.allowable_strain,
+                 "[1] for materials the database has no yield strength for");
+  options.command_line = tfmb::cli::command_line(argc, argv);
+  return tfmb::cli::run_main(app, argc, argv, [&] {
+    tfmb::Logger logger("tfmb-matmap", common.verbosity());
+    tfmb::matmap::run(options, logger, std::cout);
+    return 0;
+  });
+}

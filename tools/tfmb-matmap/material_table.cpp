@@ -1,0 +1,75 @@
+#include "material_table.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <sstream>
+
+namespace tfmb::matmap {
+
+namespace {
+std::string format(double v) {
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+std::string normalise(const std::string& name) {
+  std::string out;
+  for (char c : name) {
+    if (c == ' ' || c == '-' || c == '_') continue;
+    out.push_back(static_cast<char>(std::tolower(static_cast<unsigned char>(c))));
+  }
+  return out;
+}
+}  // namespace
+
+OutsideTable::OutsideTable(const PropertyTable& table, double t)
+    : std::runtime_error(format(t) + " K is outside the " + table.name + " table [" +
+                         format(table.lowest()) + ", " + format(table.highest()) + "] K"),
+      temperature(t),
+      lowest(table.lowest()),
+      highest(table.highest()),
+      property(table.name) {}
+
+Evaluation evaluate(const PropertyTable& table, double t, bool clamp) {
+  const auto& x = table.temperature;
+  const auto& y = table.value;
+  if (!table.contains(t)) {
+    if (!clamp) throw OutsideTable(table, t);
+    return {t < x.front() ? y.front() : y.back(), true};
+  }
+  // First point with x > t; t lies in [x[i-1], x[i]].
+  const auto upper = std::upper_bound(x.begin(), x.end(), t);
+  if (upper == x.end()) return {y.back(), false};  // t == last point
+  const auto i = static_cast<std::size_t>(upper - x.begin());
+  if (i == 0) return {y.front(), false};
+  const double u = (t - x[i - 1]) / (x[i] - x[i - 1]);
+  // Written so that u = 0 and u = 1 return the table values exactly.
+  return {u == 0.0 ? y[i - 1] : (1.0 - u) * y[i - 1] + u * y[i], false};
+}
+
+const PropertyTable* Material::find(const std::string& property) const {
+  auto it = properties.find(property);
+  return it == properties.end() ? nullptr : &it->second;
+}
+
+const PropertyTable& Material::require(const std::string& property) const {
+  if (const PropertyTable* table = find(property)) return *table;
+  throw std::invalid_argument("material " + name + " has no " + property + " in the database (missing: " +
+                              missing + ")");
+}
+
+const Material* MaterialDatabase::find(const std::string& name) const {
+  const std::string key = normalise(name);
+  for (const Material& m : materials) {
+    if (normalise(m.name) == key) return &m;
+  }
+  for (const Material& m : materials) {
+    for (const auto& alias : m.aliases) {
+      if (normalise(alias) == key) return &m;
+    }
+  }
+  return nullptr;
+}
+
+}  // namespace tfmb::matmap
