@@ -17,7 +17,8 @@ void write_calculix_input(std::ostream& out, const ThermalProblem& problem,
   if (!problem.contacts.empty() || problem.volumetric_source) {
     throw std::invalid_argument("CalculiX export: contacts and volumetric sources are not exported");
   }
-  out.precision(17);
+  // ccx reads numeric fields of at most 20 characters: 14 significant digits fit.
+  out.precision(14);
   out << "*HEADING\ntfmb-heat side-by-side deck (planar, unit depth)\n";
   out << "*NODE, NSET=NALL\n";
   for (Eigen::Index i = 0; i < mesh.points.rows(); ++i) {

@@ -1,0 +1,330 @@
+// End-to-end tests of the tfmb-heat stage on small files: a flat flap heated by convection on
+// its inner face and radiating from its outer face (1D through the thickness, exact), and the
+// bad-input paths (exit code 3 with a clear message).
+#include "tfmb/common/errors.hpp"
+#include "tfmb/common/h5.hpp"
+#include "tfmb/common/log.hpp"
+#include "tfmb/formats/files.hpp"
+#include "tfmb/formats/schema.hpp"
+#include "tfmb/heat/boundary_terms.hpp"
+#include "tfmb/heat/run.hpp"
+#include "tfmb/heat/strip_mesh.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+#include <sys/wait.h>
+
+namespace fs = std::filesystem;
+using namespace tfmb;
+
+namespace {
+
+constexpr double kLength = 0.2, kThickness = 0.004;  // [m]
+constexpr int kElements = 4;                          // beam elements of the flap
+constexpr double kH = 500.0, kTaw = 900.0;            // inner convection
+constexpr double kConductivity = 7.0;                 // [W/(m K)], constant over its table
+constexpr double kEmissivity = 0.6, kEnvironment = 300.0;
+
+formats::AttributeValue text(const std::string& value) {
+  formats::AttributeValue a;
+  a.type = formats::AttrType::string;
+  a.text = value;
+  return a;
+}
+formats::AttributeValue number(double value) {
+  formats::AttributeValue a;
+  a.type = formats::AttrType::float64;
+  a.number = value;
+  return a;
+}
+formats::AttributeValue integer(std::int64_t value) {
+  formats::AttributeValue a;
+  a.type = formats::AttrType::int64;
+  a.integer = value;
+  return a;
+}
+
+void set_floats(formats::Document& doc, const std::string& path, const std::vector<double>& values,
+                const std::string& units) {
+  auto& d = doc.datasets[path];
+  d.dtype = h5::DType::float64;
+  d.shape = {values.size()};
+  d.floats = values;
+  d.integers.clear();
+  d.strings.clear();
+  doc.attributes[path]["units"] = text(units);
+}
+
+// Renames every object under `from` to `to` (groups, datasets, attributes).
+void rename_prefix(formats::Document& doc, const std::string& from, const std::string& to) {
+  auto renamed = [&](const std::string& key) {
+    return key.rfind(from, 0) == 0 && (key.size() == from.size() || key[from.size()] == '/')
+               ? to + key.substr(from.size()) : key;
+  };
+  std::set<std::string> groups;
+  for (const auto& g : doc.groups) groups.insert(renamed(g));
+  doc.groups = groups;
+  std::map<std::string, formats::DatasetValue> datasets;
+  for (auto& [k, v] : doc.datasets) datasets[renamed(k)] = v;
+  doc.datasets = datasets;
+  std::map<std::string, std::map<std::string, formats::AttributeValue>> attributes;
+  for (auto& [k, v] : doc.attributes) attributes[renamed(k)] = v;
+  doc.attributes = attributes;
+}
+
+void copy_prefix(formats::Document& doc, const std::string& from, const std::string& to) {
+  formats::Document copy = doc;
+  rename_prefix(copy, from, to);
+  for (const auto& g : copy.groups) doc.groups.insert(g);
+  for (const auto& [k, v] : copy.datasets) doc.datasets[k] = v;
+  for (const auto& [k, v] : copy.attributes) doc.attributes[k] = v;
+}
+
+formats::Document example(const std::string& kind) {
+  return formats::example_document(*formats::find_schema(kind));
+}
+
+struct Case {
+  fs::path dir, solid, flow, model, db, output;
+  double k_value = kConductivity;
+  std::vector<double> k_temperatures = {200.0, 2000.0};
+  bool with_h_trace = true;
+  std::string solid_boundary = "convection_radiation";
+};
+
+void write_solid(const Case& c) {
+  heat::StripMeshOptions o;
+  o.length = kLength;
+  o.thickness = kThickness;
+  o.cells_along = 16;
+  o.cells_through = 4;
+  const auto strip = heat::make_strip_mesh(o);
+  formats::Mesh mesh;
+  mesh.points = strip.points;
+  const auto& quads = strip.blocks.at(0).nodes;
+  mesh.quads = h5::MatrixXiR::Map(quads.data(), static_cast<Eigen::Index>(quads.size() / 4), 4);
+  mesh.triangles.resize(0, 3);
+  auto boundary = [&](const char* name, const char* kind, const char* side) {
+    formats::Boundary b;
+    const auto& nodes = strip.boundaries.at(name).nodes;
+    b.edges = h5::MatrixXiR::Map(nodes.data(), static_cast<Eigen::Index>(nodes.size() / 2), 2);
+    b.kind = kind;
+    b.flap = "f0";
+    b.side = side;
+    return b;
+  };
+  mesh.boundaries["f0_inner"] = boundary("bottom", "solid_inner", "inner");
+  mesh.boundaries["f0_outer"] = boundary("top", "solid_outer", "outer");
+  mesh.boundaries["f0_start"] = boundary("left", "solid_end", "end");
+  mesh.boundaries["f0_end"] = boundary("right", "solid_end", "end");
+  h5::Writer w(c.solid);
+  formats::write_header(w, "solidmesh", {"test", "planar", 1.0});
+  formats::write_mesh(w, mesh);
+  w.write_strings("/link/flap_names", {"f0"});
+  std::vector<std::int64_t> cell_flap, cell_element;
+  for (Eigen::Index q = 0; q < mesh.quads.rows(); ++q) {
+    double xc = 0;
+    for (int a = 0; a < 4; ++a) xc += 0.25 * mesh.points(mesh.quads(q, a), 0);
+    cell_flap.push_back(0);
+    cell_element.push_back(static_cast<std::int64_t>(xc / (kLength / kElements)));
+  }
+  w.write("/link/cell_flap", cell_flap);
+  w.write("/link/cell_element", cell_element);
+  std::vector<double> z;
+  for (Eigen::Index i = 0; i < mesh.points.rows(); ++i) z.push_back(mesh.points(i, 1) - 0.5 * kThickness);
+  w.write("/link/point_thickness_coordinate", z, "m");
+  w.commit();
+}
+
+void write_flow(const Case& c) {
+  auto doc = example("flow");
+  auto& b = doc.attributes["/mesh/boundaries/sample"];
+  b["kind"] = text("wall");
+  b["flap"] = text("f0");
+  b["side"] = text("inner");
+  const int n = 11;
+  std::vector<double> s, x, y, h, taw, zeros;
+  for (int i = 0; i < n; ++i) {
+    // The flow wall runs the other way along the flap: the mapping must not care.
+    x.push_back(kLength * (n - 1 - i) / (n - 1));
+    s.push_back(kLength * i / (n - 1));
+    y.push_back(0.0);
+    h.push_back(kH);
+    taw.push_back(kTaw);
+    zeros.push_back(0.0);
+  }
+  const std::string w = "/walls/sample/";
+  for (auto it = doc.datasets.begin(); it != doc.datasets.end();) {
+    if (it->first.rfind(w, 0) == 0) doc.attributes.erase(it->first), it = doc.datasets.erase(it);
+    else ++it;
+  }
+  set_floats(doc, w + "s", s, "m");
+  set_floats(doc, w + "x", x, "m");
+  set_floats(doc, w + "y", y, "m");
+  set_floats(doc, w + "pressure", std::vector<double>(n, 1e5), "Pa");
+  set_floats(doc, w + "temperature", taw, "K");
+  set_floats(doc, w + "wall_shear", zeros, "Pa");
+  set_floats(doc, w + "heat_flux", zeros, "W/m^2");
+  set_floats(doc, w + "adiabatic_wall_temperature", taw, "K");
+  if (c.with_h_trace) set_floats(doc, w + "heat_transfer_coefficient", h, "W/(m^2 K)");
+  auto& node = doc.datasets[w + "node"];
+  node.dtype = h5::DType::int64;
+  node.shape = {static_cast<std::size_t>(n)};
+  node.integers.assign(n, 0);
+  doc.attributes[w + "node"]["units"] = text("1");
+  formats::write_document(doc, c.flow);
+}
+
+void write_model(const Case& c) {
+  auto doc = example("model");
+  rename_prefix(doc, "/flaps/sample", "/flaps/f0");
+  doc.attributes["/flaps/f0"]["material"] = text("alloy");
+  doc.attributes["/flaps/f0"]["elements"] = integer(kElements);
+  doc.attributes["/thermal"]["solid_boundary"] = text(c.solid_boundary);
+  doc.attributes["/thermal"]["emissivity"] = number(kEmissivity);
+  formats::write_document(doc, c.model);
+}
+
+void write_db(const Case& c) {
+  auto doc = example("material-db");
+  rename_prefix(doc, "/materials/sample", "/materials/alloy");
+  const std::string p = "/materials/alloy/sample";
+  const std::size_t n = c.k_temperatures.size();
+  for (const char* ds : {"/point_exactness", "/point_source"}) {
+    if (doc.datasets.count(p + ds)) {
+      auto& d = doc.datasets[p + ds];
+      d.strings.assign(n, d.strings.empty() ? "x" : d.strings.front());
+      d.shape = {n};
+    }
+  }
+  set_floats(doc, p + "/temperature", c.k_temperatures, "K");
+  copy_prefix(doc, p, "/materials/alloy/density");
+  set_floats(doc, "/materials/alloy/density/value", std::vector<double>(n, 4430.0), "kg/m^3");
+  copy_prefix(doc, p, "/materials/alloy/specific_heat");
+  set_floats(doc, "/materials/alloy/specific_heat/value", std::vector<double>(n, 526.0), "J/(kg K)");
+  rename_prefix(doc, p, "/materials/alloy/conductivity");
+  set_floats(doc, "/materials/alloy/conductivity/value", std::vector<double>(n, c.k_value), "W/(m K)");
+  formats::write_document(doc, c.db);
+}
+
+Case make_case(const std::string& name) {
+  Case c;
+  c.dir = fs::path(TFMB_BINARY_DIR) / "test-heat-stage" / name;
+  fs::remove_all(c.dir);
+  fs::create_directories(c.dir);
+  c.solid = c.dir / "solidmesh.h5";
+  c.flow = c.dir / "flow.h5";
+  c.model = c.dir / "model.h5";
+  c.db = c.dir / "materials-db.h5";
+  c.output = c.dir / "thermal.h5";
+  return c;
+}
+
+void write_inputs(const Case& c) {
+  write_solid(c);
+  write_flow(c);
+  write_model(c);
+  write_db(c);
+}
+
+heat::Options options_of(const Case& c) {
+  heat::Options o;
+  o.solid_mesh = c.solid;
+  o.flow = c.flow;
+  o.model = c.model;
+  o.material_db = c.db;
+  o.output = c.output;
+  o.environment_temperature = kEnvironment;
+  o.newton.temperature_tolerance = 1e-10;
+  return o;
+}
+
+std::string bad_input_message(const Case& c) {
+  std::ostringstream sink;
+  const Logger log("tfmb-heat", Verbosity::quiet, sink);
+  try {
+    heat::run(options_of(c), log);
+  } catch (const BadInput& error) {
+    return error.what();
+  }
+  return "no BadInput";
+}
+
+}  // namespace
+
+TEST(HeatStage, FlatFlapConvectionRadiationMatchesOneDimensionalBalance) {
+  auto c = make_case("flat");
+  write_inputs(c);
+  std::ostringstream sink;
+  const Logger log("tfmb-heat", Verbosity::quiet, sink);
+  ASSERT_EQ(heat::run(options_of(c), log), 0);
+
+  // 1D through the thickness: q = h (T_aw - T_in) = k (T_in - T_out) / t = eps sigma (T_out^4 - T_env^4).
+  auto radiated = [](double t) { return kEmissivity * heat::kStefanBoltzmann * (std::pow(t, 4) - std::pow(kEnvironment, 4)); };
+  auto outer_of = [&](double t_in) {  // T_out from the conduction balance, by bisection
+    double lo = kEnvironment, hi = t_in;
+    for (int i = 0; i < 200; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (kConductivity * (t_in - mid) / kThickness > radiated(mid) ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+  };
+  double lo = kEnvironment, hi = kTaw;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (kH * (kTaw - mid) > radiated(outer_of(mid)) ? lo : hi) = mid;
+  }
+  const double t_in = 0.5 * (lo + hi), t_out = outer_of(t_in);
+
+  const auto file = formats::open_checked(c.output, "thermal");  // passes the thermal schema
+  const auto mean = file.read_vector("/beam/f0/mean_temperature", kElements);
+  const auto delta = file.read_vector("/beam/f0/delta_temperature", kElements);
+  std::printf("flat flap: T_in %.6f K, T_out %.6f K; beam 0 mean %.6f K, delta %.6f K\n", t_in, t_out, mean[0], delta[0]);
+  for (int e = 0; e < kElements; ++e) {
+    // Linear elements reproduce the linear 1D profile: tolerance from the Newton tolerance.
+    EXPECT_NEAR(mean[e], 0.5 * (t_in + t_out), 1e-7);
+    EXPECT_NEAR(delta[e], t_out - t_in, 1e-7);
+  }
+  const auto t = file.read_vector("/fields/point/temperature");
+  EXPECT_NEAR(*std::max_element(t.begin(), t.end()), t_in, 1e-7);
+  const auto flux = file.read_matrix("/fields/point/heat_flux", t.size(), 3);
+  EXPECT_NEAR(flux(0, 1), kH * (kTaw - t_in), 1e-6 * kH * kTaw);  // towards +y (outer)
+  EXPECT_TRUE(fs::exists(c.dir / "thermal.xdmf"));
+}
+
+TEST(HeatStage, BadInputsExitThreeWithClearMessages) {
+  {
+    auto c = make_case("zero_k");
+    c.k_value = 0.0;
+    write_inputs(c);
+    const auto message = bad_input_message(c);
+    EXPECT_NE(message.find("conductivity"), std::string::npos) << message;
+    EXPECT_NE(message.find("not positive"), std::string::npos) << message;
+  }
+  {
+    auto c = make_case("narrow_table");
+    c.k_temperatures = {200.0, 500.0};  // the inner face reaches ~800 K
+    write_inputs(c);
+    const auto message = bad_input_message(c);
+    EXPECT_NE(message.find("outside the property table of material 'alloy'"), std::string::npos) << message;
+  }
+  {
+    auto c = make_case("missing_h");
+    c.with_h_trace = false;
+    write_inputs(c);
+    const auto message = bad_input_message(c);
+    EXPECT_NE(message.find("/walls/sample/heat_transfer_coefficient: missing, needed by"), std::string::npos) << message;
+    // The executable maps it to exit code 3.
+    const std::string command = std::string(TFMB_BIN_DIR) + "/tfmb-heat " + c.solid.string() + " " +
+                                c.flow.string() + " " + c.model.string() + " --db " + c.db.string() +
+                                " -o " + c.output.string() + " -q 2> " + (c.dir / "stderr.txt").string();
+    const int status = std::system(command.c_str());
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 3);
+    EXPECT_FALSE(fs::exists(c.output));
+  }
+}
