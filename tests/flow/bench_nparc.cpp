@@ -1,6 +1,7 @@
 // Benchmark and study driver for the NPARC CDV nozzle: prints iterations, linear iterations,
 // wall time and errors against the exact quasi-1D solution.
-// Sample run: bench_nparc 0.75 121 31 [threads]
+// Sample run: bench_nparc <pe/p0> <ni> <nj> [threads] [limiter_freeze_drop] [venkat_k] [print_every]
+//             [cfl_max] [linear_tolerance]   e.g. bench_nparc 0.75 321 81 1
 #include <cstdio>
 #include <cstdlib>
 
@@ -20,16 +21,15 @@ int main(int argc, char** argv) {
   s.threads = threads;
   s.max_iterations = 1000;
   if (argc > 5) s.limiter_freeze_drop = std::atof(argv[5]);
+  std::printf("threads %d\n", threads);
   if (argc > 6) s.venkat_k = std::atof(argv[6]);
   if (argc > 7) s.print_every = std::atoi(argv[7]);
   if (argc > 8) s.cfl_max = std::atof(argv[8]);
+  if (std::getenv("MRU")) s.max_relative_update = std::atof(std::getenv("MRU"));
+  if (std::getenv("GROW")) s.cfl_adaptive_growth = std::atof(std::getenv("GROW"));
   if (argc > 9) s.linear_tolerance = std::atof(argv[9]);
-  Mesh mesh = nparc::make_mesh(ni, nj);
-  std::vector<int> new_of_old(mesh.points.size());
-  for (std::size_t k = 0; k < new_of_old.size(); ++k) new_of_old[k] = static_cast<int>(k);
-  if (std::getenv("RCM")) new_of_old = rcm_ordering(mesh);
-  renumber_nodes(mesh, new_of_old);
-  FlowSolver solver(mesh, Geometry::planar, gas, nparc::boundary_conditions(pe), s);
+  if (std::getenv("NORENUMBER")) s.renumber = false;
+  FlowSolver solver(nparc::make_mesh(ni, nj), Geometry::planar, gas, nparc::boundary_conditions(pe), s);
   const double t = nparc::kT0 / (1.0 + 0.2 * 0.04);
   const double p = nparc::kP0 * std::pow(t / nparc::kT0, 3.5);
   solver.set_uniform({p / (gas.R * t), 0.2 * std::sqrt(1.4 * gas.R * t), 0.0, p});
@@ -43,11 +43,7 @@ int main(int argc, char** argv) {
               r.residual_drop);
   std::printf("mass flow in %.6e out %.6e exact %.6e  error %.3f %%\n", mdot_in, mdot_out, mdot_exact,
               100.0 * (mdot_out - mdot_exact) / mdot_exact);
-  // back to the structured numbering for the column averages
-  const auto w_new = solver.primitive();
-  std::vector<State> w_old(w_new.size());
-  for (std::size_t k = 0; k < w_old.size(); ++k) w_old[k] = w_new[new_of_old[k]];
-  const auto cols = nparc::column_averages(w_old, nparc::make_mesh(ni, nj).points, gas, ni, nj);
+  const auto cols = nparc::column_averages(solver.primitive(), solver.node_coords(), gas, ni, nj);
   for (std::size_t i = 0; i < cols.size(); i += std::max<std::size_t>(1, cols.size() / 20)) {
     std::printf("x %6.3f  p/p0 %.4f (exact %.4f)  M %.4f (exact %.4f)\n", cols[i].x_in, cols[i].p_ratio,
                 exact.pressure_ratio(cols[i].x_in), cols[i].mach, exact.mach(cols[i].x_in));

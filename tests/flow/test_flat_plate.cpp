@@ -55,6 +55,9 @@ TEST(LaminarFlatPlate, BlasiusSkinFriction) {
   s.viscosity.constant_mu = rho * u * 1.0 / re_l;
   s.reference_state = {rho, u, u, p};
   s.max_iterations = 400;
+  // A smooth, shock-free verification of the viscous fluxes: no limiter. (With the default
+  // Venkatakrishnan-Wang limiter the Cf error on this mesh is about 2.7 %.)
+  s.limiter = false;
   BoundaryCondition wall, far, out, sym, in;
   in.kind = BcKind::stagnation_inflow;
   in.total_temperature = t * (1.0 + 0.2 * mach * mach);

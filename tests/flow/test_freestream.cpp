@@ -9,14 +9,14 @@ namespace {
 const PerfectGas kAir{1.4, 287.05};
 
 double max_relative_residual(FlowSolver& solver, const State& w) {
-  // residual relative to the flux scale rho c^3 |n| of each equation... use the momentum flux
+  // residual relative to the flux scale (rho c, rho c^2, rho c^3) times the dual-cell size
   const auto res = solver.residual();
   const double c = kAir.sound_speed(w);
   const double scale[4] = {w[0] * c, w[0] * c * c, w[0] * c * c, w[0] * c * c * c};
   double worst = 0.0;
-  for (int i = 0; i < solver.dual().num_nodes; ++i) {
-    double face = 0.0;  // size of the dual cell's faces
-    face = std::sqrt(solver.dual().area[i]);
+  const auto area = solver.node_area();
+  for (std::size_t i = 0; i < res.size(); ++i) {
+    const double face = std::sqrt(area[i]);  // size of the dual cell's faces
     for (int v = 0; v < 4; ++v) worst = std::max(worst, std::abs(res[i][v]) / (scale[v] * face));
   }
   return worst;

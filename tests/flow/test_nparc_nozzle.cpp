@@ -35,7 +35,7 @@ NozzleRun run_nozzle(double pe) {
   const Quasi1dNozzle exact(nparc::area_in, 0.0, 5.0, 10.0, kAir.gamma, pe);
   const double mdot_exact = exact.mass_flow(nparc::kP0, nparc::kT0, kAir.R) * nparc::kInch;
   r.mass_flow_error = (solver.boundary_integral(1).mass_flow - mdot_exact) / mdot_exact;
-  r.columns = nparc::column_averages(solver.primitive(), solver.dual().coords, kAir, kNi, kNj);
+  r.columns = nparc::column_averages(solver.primitive(), solver.node_coords(), kAir, kNi, kNj);
   std::printf("NPARC pe/p0 = %.2f: %d iterations, %ld linear, %.2f s, residual drop %.1e, mass flow error %.3f %%\n",
               pe, r.report.iterations, r.report.linear_iterations, r.report.wall_time, r.report.residual_drop,
               100.0 * r.mass_flow_error);

@@ -63,8 +63,9 @@ double density_error(int ni, int nj, int* iterations) {
   *iterations = r.iterations;
   const auto w = solver.primitive();
   double err = 0.0, area = 0.0;
-  for (int k = 0; k < solver.dual().num_nodes; ++k) {
-    const double a = solver.dual().area[k];
+  const auto node_area = solver.node_area();
+  for (std::size_t k = 0; k < w.size(); ++k) {
+    const double a = node_area[k];
     err += a * (w[k][0] - w_exact[k][0]) * (w[k][0] - w_exact[k][0]);
     area += a;
   }

@@ -23,15 +23,14 @@ std::string num(double v) {
 }
 
 struct LoadedMesh {
-  Mesh mesh;                       // solver numbering
+  Mesh mesh;
   formats::Mesh file_mesh;         // as read
   std::vector<std::string> kinds;  // per mesh.boundaries
-  std::vector<int> new_of_old;
   Geometry geometry = Geometry::planar;
   double depth = 1.0;
 };
 
-LoadedMesh load_mesh(const std::filesystem::path& file, bool renumber) {
+LoadedMesh load_mesh(const std::filesystem::path& file) {
   const h5::Reader reader = formats::open_checked(file, "flowmesh");
   LoadedMesh out;
   const formats::Header header = formats::read_header(reader);
@@ -67,12 +66,6 @@ LoadedMesh load_mesh(const std::filesystem::path& file, bool renumber) {
   } catch (const std::invalid_argument& e) {
     throw BadInput(file.string() + ": " + e.what());
   }
-  out.new_of_old.resize(m.points.size());
-  std::iota(out.new_of_old.begin(), out.new_of_old.end(), 0);
-  if (renumber) {
-    out.new_of_old = rcm_ordering(m);
-    renumber_nodes(m, out.new_of_old);
-  }
   return out;
 }
 
@@ -96,7 +89,7 @@ std::vector<State> read_restart(const std::filesystem::path& file, const LoadedM
       throw BadInput(file.string() + ": /fields/point: node " + std::to_string(k) +
                      " has a non-physical state (density and pressure must be positive and finite)");
     }
-    w[lm.new_of_old[k]] = {rho[k], vel(k, 0), vel(k, 1), p[k]};
+    w[k] = {rho[k], vel(k, 0), vel(k, 1), p[k]};
   }
   return w;
 }
@@ -108,7 +101,7 @@ RunResult run(const RunOptions& o, const Logger& log) {
   require(o.gas_constant > 0.0, "--gas-constant must be positive");
   require(o.ambient_pressure > 0.0, "--ambient-pressure must be positive");
   require(o.model == "euler" || o.model == "laminar", "--model must be euler or laminar, got '" + o.model + "'");
-  LoadedMesh lm = load_mesh(o.mesh_file, o.renumber);
+  LoadedMesh lm = load_mesh(o.mesh_file);
   const bool viscous = o.model == "laminar";
   const PerfectGas gas{o.gamma, o.gas_constant};
 
@@ -162,6 +155,7 @@ RunResult run(const RunOptions& o, const Logger& log) {
   }
 
   SolverSettings settings = o.settings;
+  settings.renumber = o.renumber;
   settings.viscous = viscous;
   const double p_ref = has_inflow ? o.stagnation_pressure : o.ambient_pressure;
   const double t_ref = has_inflow ? o.stagnation_temperature : t_inf;
@@ -229,7 +223,7 @@ RunResult run(const RunOptions& o, const Logger& log) {
   std::vector<double> rho(n), p(n), temp(n), mach(n);
   h5::MatrixXdR vel(n, 3);
   for (std::size_t k = 0; k < n; ++k) {
-    const State& w = w_solver[lm.new_of_old[k]];
+    const State& w = w_solver[k];
     rho[k] = w[0];
     p[k] = w[3];
     temp[k] = gas.temperature(w);
@@ -238,8 +232,6 @@ RunResult run(const RunOptions& o, const Logger& log) {
     vel(k, 1) = w[2];
     vel(k, 2) = 0.0;
   }
-  std::vector<int> old_of_new(n);
-  for (std::size_t k = 0; k < n; ++k) old_of_new[lm.new_of_old[k]] = static_cast<int>(k);
   {
     h5::Writer w(o.output);
     formats::Header header;
@@ -257,7 +249,7 @@ RunResult run(const RunOptions& o, const Logger& log) {
       const WallTrace t = solver.wall_trace(b);
       const std::string g = "/walls/" + lm.mesh.boundaries[b].name;
       std::vector<std::int64_t> node(t.node.size());
-      for (std::size_t k = 0; k < node.size(); ++k) node[k] = old_of_new[t.node[k]];
+      for (std::size_t k = 0; k < node.size(); ++k) node[k] = t.node[k];
       w.write(g + "/node", node, "1");
       w.write(g + "/s", t.s, "m", "arc length along the wall");
       w.write(g + "/x", t.x, "m");

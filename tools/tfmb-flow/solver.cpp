@@ -51,6 +51,24 @@ FlowSolver::FlowSolver(const Mesh& mesh, Geometry geometry, const PerfectGas& ga
                        std::vector<BoundaryCondition> bcs, const SolverSettings& settings)
     : mesh_(mesh), gas_(gas), bcs_(std::move(bcs)), settings_(settings) {
   check_mesh(mesh_);
+  coords_external_ = mesh.points;
+  new_of_old_.resize(mesh_.points.size());
+  for (std::size_t k = 0; k < new_of_old_.size(); ++k) new_of_old_[k] = static_cast<int>(k);
+  if (settings_.renumber) {
+    new_of_old_ = rcm_ordering(mesh_);
+    renumber_nodes(mesh_, new_of_old_);
+  }
+  old_of_new_.resize(new_of_old_.size());
+  for (std::size_t k = 0; k < new_of_old_.size(); ++k) old_of_new_[new_of_old_[k]] = static_cast<int>(k);
+  for (auto& bc : bcs_) {
+    if (bc.node_freestream.empty()) continue;
+    if (bc.node_freestream.size() != new_of_old_.size()) {
+      throw std::invalid_argument("flow: node_freestream size differs from the number of nodes");
+    }
+    std::vector<State> internal(bc.node_freestream.size());
+    for (std::size_t k = 0; k < internal.size(); ++k) internal[new_of_old_[k]] = bc.node_freestream[k];
+    bc.node_freestream = std::move(internal);
+  }
   if (bcs_.size() != mesh_.boundaries.size()) {
     throw std::invalid_argument("flow: " + std::to_string(bcs_.size()) + " boundary conditions for " +
                                 std::to_string(mesh_.boundaries.size()) + " boundary curves");
@@ -116,15 +134,27 @@ void FlowSolver::set_uniform(const State& w) { set_primitive(std::vector<State>(
 
 void FlowSolver::set_primitive(const std::vector<State>& w) {
   if (static_cast<int>(w.size()) != dual_.num_nodes) throw std::invalid_argument("flow: state size differs from mesh");
-  for (int i = 0; i < dual_.num_nodes; ++i) u_[i] = gas_.conservative(w[i]);
+  for (int i = 0; i < dual_.num_nodes; ++i) u_[new_of_old_[i]] = gas_.conservative(w[i]);
   apply_strong_conditions(u_);
   limiter_frozen_ = false;
 }
 
 std::vector<State> FlowSolver::primitive() const {
   std::vector<State> w(u_.size());
-  for (std::size_t i = 0; i < u_.size(); ++i) w[i] = gas_.primitive(u_[i]);
+  for (std::size_t i = 0; i < u_.size(); ++i) w[i] = gas_.primitive(u_[new_of_old_[i]]);
   return w;
+}
+
+std::vector<State> FlowSolver::conservative() const {
+  std::vector<State> u(u_.size());
+  for (std::size_t i = 0; i < u_.size(); ++i) u[i] = u_[new_of_old_[i]];
+  return u;
+}
+
+std::vector<double> FlowSolver::node_area() const {
+  std::vector<double> a(u_.size());
+  for (std::size_t i = 0; i < u_.size(); ++i) a[i] = dual_.area[new_of_old_[i]];
+  return a;
 }
 
 void FlowSolver::apply_strong_conditions(std::vector<State>& u) const {
@@ -247,7 +277,9 @@ void FlowSolver::compute_residual(bool update_limiter) {
 std::vector<State> FlowSolver::residual() {
   const ScopedThreads threads(settings_.threads);
   compute_residual(true);
-  return res_;
+  std::vector<State> r(res_.size());
+  for (std::size_t i = 0; i < r.size(); ++i) r[i] = res_[new_of_old_[i]];
+  return r;
 }
 
 State FlowSolver::residual_norm() const {
@@ -373,6 +405,8 @@ SolveReport FlowSolver::solve() {
   std::vector<State> u_good = u_;
   double cfl = settings_.cfl_start;
   double cfl_scale = 1.0;
+  double last_omega = 1.0;
+  double r_previous = std::numeric_limits<double>::infinity();
   double r_max = settings_.residual_reference;
   double r_min = std::numeric_limits<double>::infinity();
   int last_minimum = 0;
@@ -402,9 +436,16 @@ SolveReport FlowSolver::solve() {
     }
     if (it > 1) {
       const double ser = settings_.cfl_start * cfl_scale * std::pow(r_max / rnorm[0], settings_.ser_exponent);
-      cfl = std::min({ser, cfl * settings_.cfl_growth, settings_.cfl_max});
+      double adaptive = 0.0;
+      if (settings_.cfl_adaptive_growth > 1.0) {
+        // grow while the Newton updates are taken whole and the residual does not run away
+        const bool healthy = last_omega >= 1.0 && rnorm[0] <= settings_.cfl_adaptive_residual_rise * r_previous;
+        adaptive = healthy ? cfl * settings_.cfl_adaptive_growth : cfl * 0.7;
+      }
+      cfl = std::min({std::max(ser, adaptive), cfl * settings_.cfl_growth, settings_.cfl_max});
       cfl = std::max(cfl, 1e-3);
     }
+    r_previous = rnorm[0];
     IterationRecord rec;
     rec.iteration = it;
     rec.residual = rnorm;
@@ -452,6 +493,7 @@ SolveReport FlowSolver::solve() {
     if (!std::isfinite(worst)) omega = 0.0;
     else if (worst > settings_.max_relative_update) omega = settings_.max_relative_update / worst;
     rec.relaxation = omega;
+    last_omega = omega;
     u_good = u_;
     for (int i = 0; i < n; ++i) {
       for (int v = 0; v < 4; ++v) u_[i][v] += omega * du[4 * i + v];
@@ -507,6 +549,8 @@ WallTrace FlowSolver::wall_trace(int curve) {
   if (edges.empty()) return t;
   t.node.push_back(edges.front()[0]);
   for (const auto& e : edges) t.node.push_back(e[1]);
+  std::vector<int> external_node(t.node.size());
+  for (std::size_t k = 0; k < t.node.size(); ++k) external_node[k] = old_of_new_[t.node[k]];
   // outward normal per node: sum of its boundary faces on this curve
   std::vector<Vec2> normal(t.node.size());
   std::vector<Vec2> tangent(t.node.size());
@@ -555,6 +599,7 @@ WallTrace FlowSolver::wall_trace(int curve) {
     t.shear_stress.push_back(shear);
     t.heat_flux.push_back(heat);
   }
+  t.node = std::move(external_node);
   return t;
 }
 
