@@ -179,3 +179,29 @@ TEST(HeatBoundaryGeometry, ArcLengthAlongStripSidesAndReversedEdges) {
     EXPECT_THROW(boundary_arc_length(mesh, broken), std::invalid_argument);
   }
 }
+
+#include "tfmb/heat/wall_mapping.hpp"
+
+TEST(HeatWallMapping, TraceIsReexpressedInTheSolidArcLength) {
+  StripMeshOptions o;
+  o.length = 1.0;
+  o.thickness = 0.1;
+  o.cells_along = 5;
+  o.cells_through = 1;
+  const auto mesh = make_strip_mesh(o);
+  const auto& bottom = mesh.boundaries.at("bottom");
+  // A flow trace running from x = 1 to x = 0, slightly off the wall (a different discretisation
+  // of the same surface), with T = 500 + 100 x.
+  std::vector<double> x, y, t;
+  for (int i = 0; i <= 20; ++i) {
+    x.push_back(1.0 - i / 20.0);
+    y.push_back(-1e-4);
+    t.push_back(500.0 + 100.0 * x.back());
+  }
+  const auto trace = map_trace_to_boundary(mesh, bottom, x, y, t, "flow wall", 1e-3);
+  EXPECT_NEAR(trace.at(0.25, 1e-12), 525.0, 1e-12);
+  EXPECT_NEAR(trace.at(1.0, 1e-12), 600.0, 1e-12);
+  // Points far from the wall belong to another wall.
+  y[3] = 0.05;
+  EXPECT_THROW(map_trace_to_boundary(mesh, bottom, x, y, t, "flow wall", 1e-3), std::invalid_argument);
+}
