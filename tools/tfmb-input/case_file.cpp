@@ -107,10 +107,15 @@ class Keys {
     return values;
   }
   // A numeric matrix written as an array of rows.
-  Eigen::MatrixXd matrix(const std::string& key, int rows, int cols, const std::string& units) {
+  // flat = true reads a single row written as a plain array ([x, y]).
+  Eigen::MatrixXd matrix(const std::string& key, int rows, int cols, const std::string& units,
+                         bool flat = false) {
     used_.insert(key);
-    const toml::array* array = table_.get_as<toml::array>(key);
-    if (!array) fail(key, "expected an array of rows [" + units + "]");
+    const toml::array* given = table_.get_as<toml::array>(key);
+    if (!given) fail(key, "expected an array of rows [" + units + "]");
+    toml::array wrapped;
+    if (flat) wrapped.push_back(*given);
+    const toml::array* array = flat ? &wrapped : given;
     if (rows > 0 && static_cast<int>(array->size()) != rows) {
       fail(key, "has " + std::to_string(array->size()) + " rows, expected " + std::to_string(rows));
     }
@@ -216,9 +221,8 @@ JointSpec read_joint(const toml::table& table, int index, const std::filesystem:
   j.flap_a = flaps[0];
   j.flap_b = flaps[1];
   if (keys.has("point")) {
-    const Eigen::MatrixXd p = keys.matrix("point", 0, 1, "m");
-    if (p.rows() != 2) keys.fail("point", "expected [x, y] in geometry units");
-    spec.point = Point(p(0, 0), p(1, 0));
+    const Eigen::MatrixXd p = keys.matrix("point", 1, 2, "m", true);
+    spec.point = Point(p(0, 0), p(0, 1));
   }
   if (j.kind == "revolute_spring") {
     j.stiffness = keys.number("stiffness", std::nullopt, 0.0, kInf, "N m/rad");
@@ -372,7 +376,7 @@ CaseSpec read_case(const std::filesystem::path& file, const std::vector<std::str
     FlowConditions& f = m.flow;
     f.nozzle_pressure_ratio = k.number("nozzle_pressure_ratio", 2.0, 1.0, 1000.0, "1");
     f.stagnation_temperature = k.number("stagnation_temperature", 294.0, 1.0, 5000.0, "K");
-    f.ambient_pressure = k.number("ambient_pressure", 101325.0, 1.0, 1e8, "Pa");
+    f.ambient_pressure = k.number("ambient_pressure", 101325.0, 1.0, 1e10, "Pa");
     f.ambient_temperature = k.number("ambient_temperature", 288.15, 1.0, 5000.0, "K");
     f.ambient_mach = k.number("ambient_mach", 0.0, 0.0, 10.0, "1");
     f.exit_pressure_ratio = k.number("exit_pressure_ratio", 0.0, 0.0, 1.0, "1");

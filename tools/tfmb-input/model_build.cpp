@@ -72,17 +72,23 @@ Polyline chain_curves(const FlapSpec& spec, const std::map<std::string, const Cu
   return clean;
 }
 
-void build_flap(const FlapSpec& spec, Flap& flap, const Logger& log) {
-  const double half_t = 0.5 * flap.thickness;
+// The curves may draw a surface instead of the mid line: move them to the mid line.
+void to_mid_line(const FlapSpec& spec, Flap& flap) {
   if (auto c = self_intersection(flap.reference_geometry)) {
     throw BadInput("self-intersecting wall: flap '" + flap.name + "' (curves " +
                    flap.curves.front() + (flap.curves.size() > 1 ? "..." : "") +
                    ") crosses itself at " + format_point(c->point));
   }
-  const bool left = inner_is_left(flap);
-  const double inner_sign = left ? 1.0 : -1.0;
+  const double half_t = 0.5 * flap.thickness;
+  const double inner_sign = inner_is_left(flap) ? 1.0 : -1.0;
   if (spec.reference == "inner") flap.reference_geometry = offset(flap.reference_geometry, -inner_sign * half_t);
   if (spec.reference == "outer") flap.reference_geometry = offset(flap.reference_geometry, inner_sign * half_t);
+}
+
+void build_flap(Flap& flap, const Logger& log) {
+  const double half_t = 0.5 * flap.thickness;
+  const bool left = inner_is_left(flap);
+  const double inner_sign = left ? 1.0 : -1.0;
   flap.inner_wall = offset(flap.reference_geometry, inner_sign * half_t);
   flap.outer_wall = offset(flap.reference_geometry, -inner_sign * half_t);
   for (const auto* wall : {&flap.inner_wall, &flap.outer_wall}) {
@@ -486,10 +492,13 @@ Model build_model(const CaseSpec& spec, const std::vector<Curve>& curves, const 
     }
     Flap flap = fs.flap;
     flap.reference_geometry = chain_curves(fs, by_name, tol, case_file);
-    build_flap(fs, flap, log);
     model.flaps.push_back(std::move(flap));
   }
-  for (const JointSpec& js : spec.joints) {
+  // Joints are checked on the curves as drawn; then curves drawing a surface move to the mid
+  // line and the flap ends at each joint are made to coincide again (their offsets differ by
+  // the tiny difference of the end tangents).
+  for (JointSpec js : spec.joints) {
+    if (js.point) *js.point *= spec.geometry.scale;  // given in geometry units
     Joint joint = js.joint;
     build_joint(js, joint, model, tol, case_file);
     for (const Joint& other : model.joints) {
@@ -497,6 +506,27 @@ Model build_model(const CaseSpec& spec, const std::vector<Curve>& curves, const 
     }
     model.joints.push_back(joint);
   }
+  for (std::size_t i = 0; i < model.flaps.size(); ++i) to_mid_line(spec.flaps[i], model.flaps[i]);
+  auto end_ref = [&](const std::string& flap, const std::string& end) -> Point& {
+    for (Flap& f : model.flaps) {
+      if (f.name == flap) return end == "start" ? f.reference_geometry.front() : f.reference_geometry.back();
+    }
+    throw InternalError("unknown flap " + flap);
+  };
+  for (Joint& j : model.joints) {
+    Point& a = end_ref(j.flap_a, j.end_a);
+    Point& b = end_ref(j.flap_b, j.end_b);
+    const Point mid = 0.5 * (a + b);
+    if ((a - b).norm() > 0.05 * std::max(model.find_flap(j.flap_a)->thickness, model.find_flap(j.flap_b)->thickness) + tol) {
+      throw BadInput("joint '" + j.name + "': the flaps' mid lines end " + std::to_string((a - b).norm()) +
+                     " m apart after moving the drawn surfaces by half the thickness (the flaps meet at an angle): "
+                     "draw the mid lines (flap reference = \"mid\")");
+    }
+    a = mid;
+    b = mid;
+    j.point = mid;
+  }
+  for (Flap& flap : model.flaps) build_flap(flap, log);
   for (const SupportSpec& ss : spec.supports) {
     Support support = ss.support;
     const Flap* flap = model.find_flap(support.flap);

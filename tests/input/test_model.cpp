@@ -1,0 +1,76 @@
+// Model building: sections against closed-form values, --set overrides, the STEP path against
+// the CSV it was written from, the domain loop.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "case_file.hpp"
+#include "model_build.hpp"
+#include "polyline.hpp"
+#include "run_tool.hpp"
+
+using namespace tfmb::input;
+
+TEST(Section, RectangleMatchesClosedForm) {
+  const double t = 0.003, b = 1.0, e = 113.76e9, nu = 0.31, rho = 4430.0;
+  const Section s = rectangle_section(t, b, e, nu, rho);
+  const double g = e / (2 * (1 + nu));
+  EXPECT_DOUBLE_EQ(s.stiffness(0, 0), e * b * t);
+  EXPECT_DOUBLE_EQ(s.stiffness(1, 1), 5.0 / 6.0 * g * b * t);
+  EXPECT_DOUBLE_EQ(s.stiffness(5, 5), e * b * t * t * t / 12.0);
+  EXPECT_DOUBLE_EQ(s.stiffness(4, 4), e * t * b * b * b / 12.0);
+  // Thin strip: J -> b t^3 / 3 (1 - 0.63 t/b) (Roark), within 0.1 %.
+  EXPECT_NEAR(s.stiffness(3, 3) / g, b * t * t * t / 3.0 * (1 - 0.63 * t / b), 1e-3 * b * t * t * t / 3.0);
+  EXPECT_DOUBLE_EQ(s.mass(0, 0), rho * b * t);
+}
+
+TEST(CaseFile, SetOverridesByTableAndByNamedElement) {
+  const auto spec = read_case(std::filesystem::path(TFMB_SOURCE_DIR) / "cases/simple-nozzle/case.toml",
+                              {"flow.nozzle_pressure_ratio=5.5", "flap.upper_2.thickness=0.004",
+                               "joint.upper_12.kind=revolute"});
+  EXPECT_DOUBLE_EQ(spec.settings.flow.nozzle_pressure_ratio, 5.5);
+  EXPECT_DOUBLE_EQ(spec.flaps[1].flap.thickness, 0.004);
+  EXPECT_EQ(spec.joints[0].joint.kind, "revolute");
+  EXPECT_NE(spec.resolved_toml.find("5.5"), std::string::npos);
+}
+
+TEST(Geometry, StepCurvesMatchTheCsvTheyWereWrittenFrom) {
+  const auto dir = std::filesystem::path(TFMB_SOURCE_DIR) / "cases/simple-nozzle";
+  const auto csv = read_geometry(dir / "nozzle.csv", 1.0, 0);
+  const auto step = read_geometry(dir / "nozzle.step", 1.0, 201);
+  ASSERT_EQ(step.size(), csv.size());
+  // The STEP holds splines through the CSV points: every CSV point lies on the sampled spline
+  // within the chord error of 201 samples (curvature radius >= 0.1 m, spacing 1.3 mm: < 5 um).
+  for (std::size_t c = 0; c < csv.size(); ++c) {
+    const auto& sampled = step[c].points;
+    for (const auto& p : csv[c].points) EXPECT_LT(distance_to(sampled, p), 5e-6) << csv[c].name;
+  }
+}
+
+TEST(Model, SimpleNozzleDomainIsAClosedCounterClockwiseLoop) {
+  const auto spec = read_case(std::filesystem::path(TFMB_SOURCE_DIR) / "cases/simple-nozzle/case.toml", {});
+  const auto curves = read_geometry(spec.geometry.file, spec.geometry.scale, spec.geometry.curve_samples);
+  std::ostringstream sink;
+  const tfmb::Logger log("test", tfmb::Verbosity::quiet, sink);
+  const Model model = build_model(spec, curves, log);
+  ASSERT_EQ(model.flaps.size(), 6u);
+  tfmb::geometry::Polyline loop;
+  for (std::size_t i = 0; i < model.domain.boundaries.size(); ++i) {
+    const auto& a = model.domain.boundaries[i];
+    const auto& b = model.domain.boundaries[(i + 1) % model.domain.boundaries.size()];
+    EXPECT_LT((a.points.back() - b.points.front()).norm(), 1e-12) << a.name << " -> " << b.name;
+    loop.insert(loop.end(), a.points.begin(), a.points.end() - 1);
+  }
+  EXPECT_GT(tfmb::geometry::signed_area(loop), 0.0);
+  // Beam nodes: elements + 1, ends exactly at the joints.
+  for (const auto& f : model.flaps) EXPECT_EQ(f.reference_curve.size(), static_cast<std::size_t>(f.elements) + 1);
+  for (const auto& j : model.joints) {
+    const Flap* a = model.find_flap(j.flap_a);
+    const auto& end = j.end_a == "start" ? a->reference_curve.front() : a->reference_curve.back();
+    EXPECT_LT((end - j.point).norm(), 1e-12);
+  }
+  // Walls are half a thickness from the reference line.
+  for (const auto& f : model.flaps) {
+    for (const auto& p : f.inner_wall) EXPECT_NEAR(distance_to(f.reference_geometry, p), 0.5 * f.thickness, 1e-6);
+  }
+}

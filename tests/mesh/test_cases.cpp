@@ -1,0 +1,76 @@
+// Every case in cases/ end to end on coarse meshes: tfmb-input, tfmb-mesh flow (cases with a flow
+// domain) and solid (cases with flaps); tfmb-check accepts every file; meshio reads the sidecars;
+// cells are counter-clockwise and boundary edges chain head to tail.
+#include <gtest/gtest.h>
+
+#include "mesh_tools.hpp"
+#include "run_tool.hpp"
+#include "tfmb/formats/schema.hpp"
+
+using tfmb::test::run_tool;
+using tfmb::test::scratch_dir;
+
+namespace {
+
+void expect_good_mesh(const std::filesystem::path& file, const std::string& kind) {
+  const auto reader = tfmb::formats::open_checked(file, kind);
+  const auto mesh = tfmb::formats::read_mesh(reader);
+  const auto q = tfmb::mesh::mesh_quality(mesh);
+  EXPECT_EQ(q.invalid_cells, 0u) << file;
+  EXPECT_GT(q.min_area, 0.0) << file;
+  for (const auto& [name, b] : mesh.boundaries) {
+    ASSERT_GT(b.edges.rows(), 0) << name;
+    for (Eigen::Index e = 1; e < b.edges.rows(); ++e) {
+      EXPECT_EQ(b.edges(e, 0), b.edges(e - 1, 1)) << file << " boundary " << name << " edge " << e;
+    }
+  }
+}
+
+}  // namespace
+
+class Case : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(Case, ModelAndMeshesPassCheckAndOpenInMeshio) {
+  const std::string name = GetParam();
+  const auto dir = scratch_dir("case-" + name);
+  const auto case_file = std::filesystem::path(TFMB_SOURCE_DIR) / "cases" / name / "case.toml";
+  const auto model = dir / "model.h5";
+  auto r = run_tool("tfmb-input " + case_file.string() + " -o " + model.string(), dir);
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  EXPECT_EQ(run_tool("tfmb-check --no-summary " + model.string(), dir).exit_code, 0);
+  const auto parsed = tfmb::input::read_model(model);
+  std::vector<std::string> sidecars;
+  if (parsed.domain.settings.kind != "none") {
+    r = run_tool("tfmb-mesh flow " + model.string() + " -o " + (dir / "flowmesh.h5").string() + " --scale 4", dir);
+    ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+    EXPECT_NE(r.stderr_text.find("quality: min angle"), std::string::npos);
+    EXPECT_EQ(run_tool("tfmb-check --no-summary " + (dir / "flowmesh.h5").string(), dir).exit_code, 0);
+    expect_good_mesh(dir / "flowmesh.h5", "flowmesh");
+    sidecars.push_back((dir / "flowmesh.xdmf").string());
+  } else {
+    r = run_tool("tfmb-mesh flow " + model.string() + " -o " + (dir / "flowmesh.h5").string(), dir);
+    EXPECT_EQ(r.exit_code, 3) << "a structure-only case has no flow domain";
+  }
+  if (!parsed.flaps.empty()) {
+    r = run_tool("tfmb-mesh solid " + model.string() + " -o " + (dir / "solidmesh.h5").string(), dir);
+    ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+    EXPECT_EQ(run_tool("tfmb-check --no-summary " + (dir / "solidmesh.h5").string(), dir).exit_code, 0);
+    expect_good_mesh(dir / "solidmesh.h5", "solidmesh");
+    sidecars.push_back((dir / "solidmesh.xdmf").string());
+  }
+  for (const auto& sidecar : sidecars) {
+    const std::string command = "/usr/bin/python3 -c \"import meshio, sys; m = meshio.read(sys.argv[1]); "
+                                "assert len(m.points) > 0 and sum(len(c.data) for c in m.cells) > 0\" " +
+                                sidecar + " 2> " + (dir / "meshio.txt").string();
+    EXPECT_EQ(std::system(command.c_str()), 0) << "meshio could not read " << sidecar;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases, Case,
+                         ::testing::Values("simple-nozzle", "realistic-nozzle", "nasa-2dcd", "nparc-cdv",
+                                           "tmr-flatplate", "beam-revolute", "flexible-joint"),
+                         [](const auto& info) {
+                           std::string n = info.param;
+                           std::replace(n.begin(), n.end(), '-', '_');
+                           return n;
+                         });

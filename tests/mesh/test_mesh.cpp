@@ -1,0 +1,209 @@
+// Flow mesh structure, solid mesh links and mesh deformation.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <set>
+
+#include "case_file.hpp"
+#include "mesh_tools.hpp"
+#include "model_build.hpp"
+#include "polyline.hpp"
+#include "tfmb/common/errors.hpp"
+#include "run_tool.hpp"
+#include "tfmb/formats/files.hpp"
+
+using namespace tfmb;
+
+namespace {
+
+input::Model load_case(const std::string& name, const std::vector<std::string>& overrides = {}) {
+  const auto spec = input::read_case(std::filesystem::path(TFMB_SOURCE_DIR) / "cases" / name / "case.toml", overrides);
+  std::vector<input::Curve> curves;
+  if (!spec.geometry.file.empty()) curves = input::read_geometry(spec.geometry.file, spec.geometry.scale, spec.geometry.curve_samples);
+  static std::ostringstream sink;
+  const Logger log("test", Verbosity::quiet, sink);
+  return input::build_model(spec, curves, log);
+}
+
+const Logger& quiet() {
+  static std::ostringstream sink;
+  static const Logger log("test", Verbosity::quiet, sink);
+  return log;
+}
+
+}  // namespace
+
+TEST(FlowMesh, WallLayersHaveTheCaseFirstHeightAndGrowth) {
+  const auto model = load_case("simple-nozzle");
+  mesh::FlowMeshReport report;
+  mesh::FlowMeshOptions options;
+  options.scale = 4.0;
+  const auto m = mesh::build_flow_mesh(model, options, report, quiet());
+  ASSERT_GT(report.boundary_layers, 1);
+  EXPECT_DOUBLE_EQ(report.first_layer_height, 4.0 * model.flow.first_cell_height);
+  // The first quad on the inner wall of the throat flap: its wall-normal side is the first height.
+  const auto& b = m.boundaries.at("upper_2_inner");
+  const auto wall_node = b.edges(b.edges.rows() / 2, 0);
+  double nearest = 1e300;
+  for (Eigen::Index q = 0; q < m.quads.rows(); ++q) {
+    for (int k = 0; k < 4; ++k) {
+      if (m.quads(q, k) != wall_node) continue;
+      for (int j : {(k + 1) % 4, (k + 3) % 4}) {
+        const double d = (m.points.row(m.quads(q, j)) - m.points.row(wall_node)).norm();
+        nearest = std::min(nearest, d);
+      }
+    }
+  }
+  // Mitred normals lengthen the first edge by 1/cos(half the wall turn), < 0.1 % on this smooth wall.
+  EXPECT_NEAR(nearest, report.first_layer_height, 1e-3 * report.first_layer_height);
+  // Every boundary of the model's loop is in the mesh with its kind.
+  for (const auto& piece : model.domain.boundaries) {
+    ASSERT_TRUE(m.boundaries.count(piece.name)) << piece.name;
+    EXPECT_EQ(m.boundaries.at(piece.name).kind, piece.kind);
+    EXPECT_EQ(m.boundaries.at(piece.name).flap, piece.flap);
+    EXPECT_EQ(m.boundaries.at(piece.name).side, piece.side);
+  }
+  EXPECT_GT(report.quality.min_angle, 15.0);
+}
+
+TEST(FlowMesh, FlatPlateFirstSpacingIsTheCaseValue) {
+  const auto model = load_case("tmr-flatplate");
+  mesh::FlowMeshReport report;
+  mesh::FlowMeshOptions options;
+  options.scale = 1.0;
+  const auto m = mesh::build_flow_mesh(model, options, report, quiet());
+  EXPECT_EQ(m.quads.rows(), (24 + 112) * 96);  // the TMR 137x97 grid's cell count
+  EXPECT_NEAR(report.first_layer_height, 2e-6, 1e-12);
+  // TMR (refdata/flow/tmr_flatplate_grid_family.csv): average y+ ~ 0.1 at 5e-7 on the finest
+  // grid, so ~ 0.4 at 4x that spacing; our flat-plate estimate agrees within its crudeness.
+  EXPECT_NEAR(report.estimated_yplus, 0.4, 0.15);
+}
+
+TEST(SolidMesh, EveryCellLinksToItsBeamElement) {
+  const auto model = load_case("realistic-nozzle");
+  mesh::SolidLink link;
+  const auto m = mesh::build_solid_mesh(model, link);
+  ASSERT_EQ(link.cell_flap.size(), m.cell_count());
+  for (std::size_t c = 0; c < link.cell_flap.size(); ++c) {
+    const auto& flap = model.flaps[static_cast<std::size_t>(link.cell_flap[c])];
+    const auto e = link.cell_element[c];
+    ASSERT_GE(e, 0);
+    ASSERT_LT(e, flap.elements);
+    // The cell centre projects onto the reference line within element e's arc-length range.
+    Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+    for (int k = 0; k < 4; ++k) centre += m.points.row(m.quads(static_cast<Eigen::Index>(c), k)).transpose() / 4.0;
+    double s = 0.0;
+    input::distance_to(flap.reference_geometry, centre, &s);
+    const double element_length = input::length(flap.reference_geometry) / flap.elements;
+    EXPECT_GE(s, e * element_length - 1e-9);
+    EXPECT_LE(s, (e + 1) * element_length + 1e-9);
+  }
+  for (std::size_t i = 0; i < link.point_thickness_coordinate.size(); ++i) {
+    EXPECT_LE(std::abs(link.point_thickness_coordinate[i]), 0.5 * 0.004 + 1e-12);
+  }
+}
+
+namespace {
+
+// Writes a walldisp file rotating the walls of one flap rigidly about `centre` by `angle`, with
+// x0 the mesh's own wall nodes; or, with `shift`, translating them.
+void write_rotation(const formats::Mesh& m, const std::string& flap, const Eigen::Vector2d& centre, double angle,
+                    const Eigen::Vector2d& shift, const std::filesystem::path& file) {
+  h5::Writer w(file);
+  formats::write_header(w, "walldisp", {});
+  w.set_attr("/", "wall_source", "flowmesh");
+  const Eigen::Matrix2d rotation = Eigen::Rotation2D<double>(angle).toRotationMatrix();
+  for (const auto& [name, b] : m.boundaries) {
+    if (b.flap != flap) continue;
+    h5::MatrixXdR x0(b.edges.rows() + 1, 2), u(b.edges.rows() + 1, 2);
+    for (Eigen::Index e = 0; e <= b.edges.rows(); ++e) {
+      const auto node = e < b.edges.rows() ? b.edges(e, 0) : b.edges(e - 1, 1);
+      const Eigen::Vector2d p = m.points.row(node).transpose();
+      x0.row(e) = p.transpose();
+      u.row(e) = (rotation * (p - centre) + centre - p + shift).transpose();
+    }
+    w.create_group("/walls/" + name);
+    w.set_attr("/walls/" + name, "flap", b.flap);
+    w.set_attr("/walls/" + name, "side", b.side);
+    w.write("/walls/" + name + "/x0", x0, "m");
+    w.write("/walls/" + name + "/displacement", u, "m");
+  }
+  w.commit();
+}
+
+}  // namespace
+
+TEST(Deform, RigidTwoDegreeRotationOfOneFlapKeepsCellsValidAndWallsExact) {
+  const auto model = load_case("simple-nozzle");
+  mesh::FlowMeshReport report;
+  mesh::FlowMeshOptions options;
+  options.scale = 4.0;
+  const auto m = mesh::build_flow_mesh(model, options, report, quiet());
+  const auto dir = test::scratch_dir("deform-rotation");
+  Eigen::Vector2d hinge = Eigen::Vector2d::Zero();
+  for (const auto& j : model.joints) {
+    if (j.name == "upper_23") hinge = j.point;
+  }
+  const double angle = 2.0 * M_PI / 180.0;
+  write_rotation(m, "upper_3", hinge, angle, Eigen::Vector2d::Zero(), dir / "walldisp.h5");
+  const auto walls = mesh::read_walldisp(dir / "walldisp.h5");
+  ASSERT_EQ(walls.size(), 3u);  // inner, outer, end
+  mesh::DeformReport deform_report;
+  const auto moved = mesh::deform_mesh(m, walls, deform_report);
+  EXPECT_EQ(deform_report.quality.invalid_cells, 0u);
+  EXPECT_GT(deform_report.quality.min_area, 0.0);
+  EXPECT_EQ(moved.triangles, m.triangles);
+  EXPECT_EQ(moved.quads, m.quads);
+  const Eigen::Matrix2d rotation = Eigen::Rotation2D<double>(angle).toRotationMatrix();
+  double worst = 0.0;
+  std::set<std::int64_t> nodes;
+  for (const auto& [name, b] : m.boundaries) {
+    if (b.flap != "upper_3") continue;
+    for (Eigen::Index e = 0; e < b.edges.rows(); ++e) nodes.insert({b.edges(e, 0), b.edges(e, 1)});
+  }
+  for (auto node : nodes) {
+    const Eigen::Vector2d p = m.points.row(node).transpose();
+    const Eigen::Vector2d expected = rotation * (p - hinge) + hinge;
+    worst = std::max(worst, (moved.points.row(node).transpose() - expected).norm());
+  }
+  EXPECT_LT(worst, 1e-12) << "wall nodes must sit on the rotated wall";
+  // Far-field nodes do not move.
+  const auto& far = m.boundaries.at("farfield_upper");
+  EXPECT_EQ((moved.points.row(far.edges(0, 0)) - m.points.row(far.edges(0, 0))).norm(), 0.0);
+}
+
+TEST(Deform, FoldingDisplacementIsRefusedWithTheAdmissibleFraction) {
+  const auto dir = test::scratch_dir("deform-fold");
+  const auto model_file = dir / "model.h5";
+  auto r = test::run_tool("tfmb-input " + std::string(TFMB_SOURCE_DIR) + "/cases/simple-nozzle/case.toml -o " +
+                              model_file.string(), dir);
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  r = test::run_tool("tfmb-mesh flow " + model_file.string() + " -o " + (dir / "flow.h5").string() + " --scale 4", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  const auto m = formats::read_mesh(h5::Reader(dir / "flow.h5"));
+  // Push the last upper flap 5 cm towards the axis: the cells at its joint with the fixed flap fold.
+  write_rotation(m, "upper_3", Eigen::Vector2d::Zero(), 0.0, Eigen::Vector2d(0.0, -0.05), dir / "walldisp.h5");
+  r = test::run_tool("tfmb-mesh deform " + (dir / "flow.h5").string() + " " + (dir / "walldisp.h5").string() +
+                         " -o " + (dir / "flow2.h5").string(), dir);
+  EXPECT_EQ(r.exit_code, 3) << r.stderr_text;
+  const std::string key = "largest admissible fraction of this displacement is ";
+  const auto at = r.stderr_text.find(key);
+  ASSERT_NE(at, std::string::npos) << r.stderr_text;
+  const double fraction = std::stod(r.stderr_text.substr(at + key.size()));
+  EXPECT_GT(fraction, 0.0);
+  EXPECT_LT(fraction, 1.0);
+  EXPECT_FALSE(std::filesystem::exists(dir / "flow2.h5")) << "no output on refusal";
+  // The reported fraction is the boundary: slightly less deforms, slightly more is refused.
+  const auto walls = mesh::read_walldisp(dir / "walldisp.h5");
+  auto scaled = [&](double f) {
+    auto w = walls;
+    for (auto& wall : w) {
+      for (auto& u : wall.displacement) u *= f;
+    }
+    return w;
+  };
+  mesh::DeformReport report;
+  EXPECT_NO_THROW(mesh::deform_mesh(m, scaled(0.99 * fraction), report));
+  EXPECT_THROW(mesh::deform_mesh(m, scaled(std::min(1.0, 1.01 * fraction)), report), tfmb::BadInput);
+}
