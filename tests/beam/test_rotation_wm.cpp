@@ -90,6 +90,8 @@ TEST(RotationWM, TangentInverseAndTransposeIdentity) {
     const Eigen::Vector3d c = 4.0 * std::tan(angle / 4.0) * axis;
     const Eigen::Matrix3d h = wm_tangent<double>(c);
     EXPECT_LT((h * wm_tangent_inverse<double>(c) - Eigen::Matrix3d::Identity()).norm(), 1e-12);
+    const Eigen::Vector3d v(0.3, -0.7, 1.1);
+    EXPECT_LT((wm_tangent_transpose_times<double>(c, v) - h.transpose() * v).norm(), 1e-12);
     EXPECT_LT((wm_rotation<double>(c).transpose() * h - h.transpose()).norm(), 1e-12);
   }
 }

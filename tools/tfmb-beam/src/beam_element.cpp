@@ -7,28 +7,72 @@ namespace {
 
 using H9 = Hyper<9>;
 
-/// Section frame transpose A = Lambda(xi)^T and curvature k = H(r)^T r' at one point, as
-/// functions of the nodal rotation increments theta_j (FORMULATION.md sec. 2; objective
-/// interpolation of relative rotations about the middle node).
+/// Double matrix times Hyper vector (scalar x Hyper products only, no Hyper x Hyper).
 template <typename T>
-void section_kinematics(const std::array<Eigen::Matrix3d, 3>& frame,
-                        const std::array<Eigen::Vector3d, 3>& relative_param,  // WM(L2^T Lj), j = 0..2
-                        const std::array<Vec3<T>, 3>& theta, const std::array<double, 3>& n,
-                        const std::array<double, 3>& dn_ds, Mat3<T>& a, Vec3<T>& k) {
-  const Mat3<T> l2t = frame[1].transpose().cast<T>();
-  Vec3<T> r = Vec3<T>::Zero();
-  Vec3<T> rp = Vec3<T>::Zero();
+Vec3<T> mul(const Eigen::Matrix3d& a, const Vec3<T>& v) {
+  Vec3<T> r;
+  for (int i = 0; i < 3; ++i) r(i) = v(0) * a(i, 0) + v(1) * a(i, 1) + v(2) * a(i, 2);
+  return r;
+}
+template <typename T>
+Vec3<T> mul(const Mat3<T>& a, const Eigen::Vector3d& v) {
+  Vec3<T> r;
+  for (int i = 0; i < 3; ++i) r(i) = a(i, 0) * v(0) + a(i, 1) * v(1) + a(i, 2) * v(2);
+  return r;
+}
+template <typename T>
+Vec3<T> mul(const Mat3<T>& a, const Vec3<T>& v) {
+  Vec3<T> r;
+  for (int i = 0; i < 3; ++i) r(i) = a(i, 0) * v(0) + a(i, 1) * v(1) + a(i, 2) * v(2);
+  return r;
+}
+template <typename T>
+Vec3<T> mul_transpose(const Mat3<T>& a, const Vec3<T>& v) {
+  Vec3<T> r;
+  for (int i = 0; i < 3; ++i) r(i) = a(0, i) * v(0) + a(1, i) * v(1) + a(2, i) * v(2);
+  return r;
+}
+
+/// theta x z for the increment theta = variables offset..offset+2 (at value zero).
+Vec3<H9> variable_cross(int offset, const Vec3<H9>& z) {
+  Vec3<H9> r;
+  r(0) = times_variable(z(2), offset + 1) - times_variable(z(1), offset + 2);
+  r(1) = times_variable(z(0), offset + 2) - times_variable(z(2), offset + 0);
+  r(2) = times_variable(z(1), offset + 0) - times_variable(z(0), offset + 1);
+  return r;
+}
+/// R(theta) z and R(theta)^T z with R to second order, I +- S + S^2/2 (exact for a Hyper at 0).
+Vec3<H9> rotate_by_increment(int offset, const Vec3<H9>& z, double sign) {
+  const Vec3<H9> t = variable_cross(offset, z);
+  return z + t * sign + variable_cross(offset, t) * 0.5;
+}
+
+/// Relative rotation parameters r_j = WM(Lambda_2(theta)^T Lambda_j(theta)) of the end nodes as
+/// functions of the nodal increments (FORMULATION.md sec. 2, objective interpolation about the
+/// middle node). r_j = compose(c2j, Lambda_2^T p_j) with p_j the parameters of
+/// R(theta_2)^T R(theta_j), taken to second order (a + b + b x a / 2, exact for a Hyper at zero).
+std::array<Vec3<H9>, 3> relative_rotations(const std::array<Eigen::Matrix3d, 3>& frame,
+                                           const std::array<Eigen::Vector3d, 3>& relative_param,
+                                           const std::array<Vec3<H9>, 3>& theta) {
+  std::array<Vec3<H9>, 3> r;
+  r[1] = Vec3<H9>::Constant(H9(0.0));
+  const Eigen::Matrix3d l2t = frame[1].transpose();
   for (int j = 0; j < 3; j += 2) {
-    // R(-theta_2) R(theta_j): the spatial relative increment; then pulled back by Lambda_2.
-    const Vec3<T> p = wm_compose<T>(theta[j], wm_inverse<T>(theta[1]));
-    const Vec3<T> q = l2t * p;
-    const Vec3<T> rj = wm_compose<T>(relative_param[j].cast<T>(), q);
-    r += rj * n[j];
-    rp += rj * dn_ds[j];
+    // theta_j x theta_2 = -(theta_2 x theta_j), with theta_2 the variables 3..5.
+    const Vec3<H9> p = theta[j] - theta[1] - variable_cross(3, theta[j]) * 0.5;
+    r[j] = wm_compose<H9>(relative_param[j].cast<H9>(), mul(l2t, p));
   }
-  const Mat3<T> rot_t = wm_rotation<T>(r).transpose();
-  a = rot_t * l2t * wm_rotation<T>(theta[1]).transpose();
-  k = wm_tangent<T>(r).transpose() * rp;
+  return r;
+}
+
+/// Frame transpose and curvature for plain doubles (reference geometry): exact formulas.
+void section_kinematics_reference(const std::array<Eigen::Matrix3d, 3>& frame,
+                                  const std::array<Eigen::Vector3d, 3>& relative_param, const std::array<double, 3>& n,
+                                  const std::array<double, 3>& dn_ds, Eigen::Matrix3d& a, Eigen::Vector3d& k) {
+  Eigen::Vector3d r = n[0] * relative_param[0] + n[2] * relative_param[2];
+  Eigen::Vector3d rp = dn_ds[0] * relative_param[0] + dn_ds[2] * relative_param[2];
+  a = wm_rotation<double>(r).transpose() * frame[1].transpose();
+  k = wm_tangent<double>(r).transpose() * rp;
 }
 
 std::array<Eigen::Vector3d, 3> relative_parameters(const std::array<Eigen::Matrix3d, 3>& frame) {
@@ -44,8 +88,6 @@ ElementGeometry make_element_geometry(const std::array<Eigen::Vector3d, 3>& posi
                                       const std::array<Eigen::Matrix3d, 3>& frame) {
   ElementGeometry g;
   const auto rel = relative_parameters(frame);
-  const std::array<Vec3<double>, 3> zero{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
-                                         Eigen::Vector3d::Zero()};
   for (int gp = 0; gp < kGaussPoints; ++gp) {
     const double xi = gauss_point(gp);
     const auto n = shape_quadratic(xi);
@@ -59,7 +101,7 @@ ElementGeometry make_element_geometry(const std::array<Eigen::Vector3d, 3>& posi
     for (int j = 0; j < 3; ++j) dn_ds[j] = dn[j] / jac;
     Eigen::Matrix3d a;
     Eigen::Vector3d k;
-    section_kinematics<double>(frame, rel, zero, n, dn_ds, a, k);
+    section_kinematics_reference(frame, rel, n, dn_ds, a, k);
     g.force_strain_ref[gp] = a * (dx / jac);
     g.moment_strain_ref[gp] = k;
   }
@@ -86,6 +128,9 @@ void evaluate_beam_element(const ElementGeometry& geometry, const Section& secti
   for (int j = 0; j < 3; ++j)
     for (int i = 0; i < 3; ++i) theta[j](i) = H9::variable(3 * j + i, 0.0);
   const Matrix6d& c = section.stiffness;
+  const std::array<Vec3<H9>, 3> rel_h = relative_rotations(state.frame, rel, theta);
+  const Eigen::Matrix3d l2 = state.frame[1];
+  const Eigen::Matrix3d l2t = l2.transpose();
 
   for (int gp = 0; gp < kGaussPoints; ++gp) {
     const double xi = gauss_point(gp);
@@ -99,10 +144,14 @@ void evaluate_beam_element(const ElementGeometry& geometry, const Section& secti
       dn_ds[j] = dn[j] * inv_j;
       dx += dn_ds[j] * state.position[j];
     }
-    Mat3<H9> a;
-    Vec3<H9> k;
-    section_kinematics<H9>(state.frame, rel, theta, n, dn_ds, a, k);
-    const Vec3<H9> e = a * dx.cast<H9>();
+    // Section frame Lambda = R(theta_2) Lambda_2 R(r): A = Lambda^T = R(r)^T Lambda_2^T R(theta_2)^T.
+    const Vec3<H9> r = rel_h[0] * n[0] + rel_h[2] * n[2];
+    const Vec3<H9> rp = rel_h[0] * dn_ds[0] + rel_h[2] * dn_ds[2];
+    const Mat3<H9> rot = wm_rotation<H9>(r);
+    const Vec3<H9> k = wm_tangent_transpose_times<H9>(r, rp);
+    const Vec3<H9> e = mul_transpose(rot, mul(l2t, rotate_by_increment(3, dx.cast<H9>(), -1.0)));
+    // Spatial vectors A^T v for a material vector v: R(theta_2) Lambda_2 R(r) v.
+    auto push_forward = [&](const Eigen::Vector3d& v) { return rotate_by_increment(3, mul(l2, mul(rot, v)), 1.0); };
     std::array<const H9*, 6> eps_h{&e(0), &e(1), &e(2), &k(0), &k(1), &k(2)};
     Vector6d eps;
     for (int i = 0; i < 3; ++i) {
@@ -114,12 +163,10 @@ void evaluate_beam_element(const ElementGeometry& geometry, const Section& secti
     result.strain[gp] = eps;
     result.stress[gp] = sigma;
     result.strain_energy += 0.5 * wj * eps.dot(sigma);
-
-    Eigen::Matrix3d a_val;
+    Eigen::Matrix3d rot_val;
     for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) a_val(i, j) = a(i, j).v;
-    // Spatial internal force n = Lambda N: force on node j is integral of N_j' n.
-    const Eigen::Vector3d n_spatial = a_val.transpose() * sigma.head<3>();
+      for (int j = 0; j < 3; ++j) rot_val(i, j) = rot(i, j).v;
+    const Eigen::Matrix3d a_val = rot_val.transpose() * l2t;
     // Strain-displacement matrix B (6 x 18): d eps / d(du_j, dtheta_j).
     Eigen::Matrix<double, 6, 18> b = Eigen::Matrix<double, 6, 18>::Zero();
     for (int j = 0; j < 3; ++j) {
@@ -147,8 +194,8 @@ void evaluate_beam_element(const ElementGeometry& geometry, const Section& secti
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) result.tangent.block<3, 3>(6 * i + 3, 6 * j + 3) += g_tt.block<3, 3>(3 * i, 3 * j);
     // Displacement-rotation: d(A^T sigma_e)/dtheta, and the follower load's dependence on rotation.
-    const Vec3<H9> at_sigma = a.transpose() * sigma.head<3>().cast<H9>();
-    const Vec3<H9> at_follower = a.transpose() * loads.follower_force_per_length.cast<H9>();
+    const Vec3<H9> at_sigma = push_forward(sigma.head<3>());
+    const Vec3<H9> at_follower = push_forward(loads.follower_force_per_length);
     Eigen::Matrix<double, 3, 9> d_at_sigma, d_follower;
     for (int r = 0; r < 3; ++r)
       for (int p = 0; p < 9; ++p) {
@@ -161,7 +208,6 @@ void evaluate_beam_element(const ElementGeometry& geometry, const Section& secti
         result.tangent.block<3, 3>(6 * i, 6 * j + 3) += blk - wj * n[i] * d_follower.block<3, 3>(0, 3 * j);
         result.tangent.block<3, 3>(6 * j + 3, 6 * i) += blk.transpose();
       }
-    (void)n_spatial;
   }
   if (with_tangent) {
     // Spin-conjugate forces change with the multiplicative update as H(dtheta)^-T: -1/2 S(m).

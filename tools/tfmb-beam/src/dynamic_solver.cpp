@@ -232,7 +232,13 @@ DynamicResult DynamicSolver::run(const State& initial) {
         converged = true;
         break;
       }
-      const Eigen::VectorXd dx = solver.solve(assembly_.size(), k, r, assembly_.step_limit());
+      Eigen::VectorXd dx;
+      try {
+        dx = solver.solve(assembly_.size(), k, r, assembly_.step_limit());
+      } catch (const ModelError&) {
+        if (it == 0) throw;
+        break;
+      }
       assembly_.apply_increment(st, dx);
       // Increment criterion relative to the step's motion (see newton_static).
       double xmax = 1.0;

@@ -6,6 +6,7 @@
 
 #include "tfmb/beam/errors.hpp"
 #include "tfmb/beam/linear_solver.hpp"
+#include "tfmb/beam/rotation_wm.hpp"
 
 namespace tfmb::beam {
 
@@ -23,7 +24,20 @@ bool newton_static(const Assembly& assembly, State& state, double load_factor, c
     ++iterations;
     if (!r.allFinite()) break;
     if (r.norm() <= options.tolerance * std::max(scale, 1e-300) && it > 0) return true;
-    const Eigen::VectorXd dx = solver.solve(assembly.size(), k, r, assembly.step_limit());
+    Eigen::VectorXd dx;
+    try {
+      dx = solver.solve(assembly.size(), k, r, assembly.step_limit());
+    } catch (const ModelError&) {
+      // Singular at the start of a step: the model itself is singular (mechanism). Singular
+      // after a few iterations: Newton wandered off; cut the step back.
+      if (it == 0) throw;
+      break;
+    }
+    // Damped Newton: a correction that turns a node by more than max_rotation_increment is
+    // scaled down (the first iterate of a large load step overshoots badly in rotation).
+    double max_rot = 0.0;
+    for (int i = 0; i < assembly.num_nodes(); ++i) max_rot = std::max(max_rot, dx.segment<3>(6 * i + 3).norm());
+    if (max_rot > options.max_rotation_increment) dx *= options.max_rotation_increment / max_rot;
     assembly.apply_increment(state, dx);
     accumulated += dx.head(nq);
     // Increment criterion: with quadratic convergence a correction 1e-10 times the step's total
@@ -39,6 +53,23 @@ bool newton_static(const Assembly& assembly, State& state, double load_factor, c
   return false;
 }
 
+namespace {
+
+/// The change from `a` to `b` as an increment vector (spatial rotation parameters).
+Eigen::VectorXd difference(const Assembly& assembly, const State& a, const State& b) {
+  Eigen::VectorXd d(assembly.size());
+  const int nn = assembly.num_nodes();
+  for (int i = 0; i < nn; ++i) {
+    d.segment<3>(6 * i) = b.position[i] - a.position[i];
+    d.segment<3>(6 * i + 3) = wm_compose<double>(b.rotation[i], wm_inverse<double>(a.rotation[i]));
+  }
+  d.segment(6 * nn, assembly.num_joint_dofs()) = b.joint_dofs - a.joint_dofs;
+  d.tail(assembly.num_multipliers()) = b.multipliers - a.multipliers;
+  return d;
+}
+
+}  // namespace
+
 StaticResult solve_static(const Assembly& assembly, const State& initial, const StaticOptions& options) {
   StaticResult res;
   res.state = initial;
@@ -46,13 +77,27 @@ StaticResult solve_static(const Assembly& assembly, const State& initial, const 
   double lf = 0.0;
   int cut = 0;
   int easy = 0;
+  // Secant predictor: the last converged step's change, scaled to the new step length. It starts
+  // Newton near the solution path instead of at the (overshooting) linear response.
+  Eigen::VectorXd last_change;
+  double last_step = 0.0;
   for (int attempt = 0; attempt < options.max_steps && lf < options.final_load_factor * (1 - 1e-14); ++attempt) {
     const double target = std::min(lf + step, options.final_load_factor);
     State trial = res.state;
+    if (options.secant_predictor && last_change.size() > 0 && last_step > 0.0) assembly.apply_increment(trial, ((target - lf) / last_step) * last_change);
     int iters = 0;
-    const bool ok = newton_static(assembly, trial, target, options, iters);
+    bool ok = newton_static(assembly, trial, target, options, iters);
+    if (!ok && options.secant_predictor && last_change.size() > 0) {
+      // Retry the same step without the predictor before cutting back.
+      trial = res.state;
+      int more = 0;
+      ok = newton_static(assembly, trial, target, options, more);
+      iters += more;
+    }
     res.iterations += iters;
     if (ok) {
+      last_change = difference(assembly, res.state, trial);
+      last_step = target - lf;
       res.state = std::move(trial);
       lf = target;
       res.load_factor = lf;

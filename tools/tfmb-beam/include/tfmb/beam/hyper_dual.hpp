@@ -135,6 +135,16 @@ Hyper<N> sin(const Hyper<N>& a) {
   return Hyper<N>::chain(a, std::sin(a.v), std::cos(a.v), -std::sin(a.v));
 }
 
+/// x * theta_k where theta_k is independent variable k at value 0: O(N) instead of a full product.
+template <int N>
+Hyper<N> times_variable(const Hyper<N>& x, int k) {
+  Hyper<N> r(0.0);
+  r.g[k] = x.v;
+  for (int i = 0; i < N; ++i) r.h[Hyper<N>::packed(i, k)] = x.g[i];
+  r.h[Hyper<N>::packed(k, k)] = 2.0 * x.g[k];
+  return r;
+}
+
 /// Plain value of a scalar (double or Hyper).
 inline double value_of(double x) { return x; }
 template <int N>

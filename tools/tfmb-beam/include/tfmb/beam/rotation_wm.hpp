@@ -42,12 +42,25 @@ T wm_c0(const Vec3<T>& c) {
 /// Wiener-Milenkovic parameters; FORMULATION.md sec. 1).
 template <typename T>
 Mat3<T> wm_rotation(const Vec3<T>& c) {
-  const T c0 = wm_c0(c);
+  // Expanded with S(c)^2 = c c^T - (c.c) I to keep the operation count low (this is evaluated
+  // with Hyper numbers in the element).
+  const T cc = c(0) * c(0) + c(1) * c(1) + c(2) * c(2);
+  const T c0 = 2.0 - cc / 8.0;
   const T d = 4.0 - c0;
   const T f = 2.0 / (d * d);
-  const Mat3<T> s = skew(c);
-  Mat3<T> r = (s * c0 + s * s) * f;
-  for (int i = 0; i < 3; ++i) r(i, i) += 1.0;
+  const T fc0 = f * c0;
+  Mat3<T> r;
+  for (int i = 0; i < 3; ++i) {
+    r(i, i) = 1.0 + f * (c(i) * c(i) - cc);
+    for (int j = i + 1; j < 3; ++j) {
+      const T sym = f * (c(i) * c(j));
+      const int k = 3 - i - j;
+      // S(c)_ij = -eps_ijk c_k
+      const T skw = fc0 * c(k) * (((j - i + 3) % 3 == 1) ? -1.0 : 1.0);
+      r(i, j) = sym + skw;
+      r(j, i) = sym - skw;
+    }
+  }
   return r;
 }
 
@@ -59,6 +72,21 @@ Mat3<T> wm_tangent(const Vec3<T>& c) {
   Mat3<T> h = skew(c) + c * c.transpose() / 4.0;
   for (int i = 0; i < 3; ++i) h(i, i) += c0;
   return h * (2.0 / (d * d));
+}
+
+/// H(c)^T v = 2 (c0 v - c x v + c (c.v)/4) / (4 - c0)^2, without forming H (material curvature
+/// k = H(r)^T r' in the element).
+template <typename T>
+Vec3<T> wm_tangent_transpose_times(const Vec3<T>& c, const Vec3<T>& v) {
+  const T c0 = wm_c0(c);
+  const T d = 4.0 - c0;
+  const T f = 2.0 / (d * d);
+  const T cv = (c(0) * v(0) + c(1) * v(1) + c(2) * v(2)) * 0.25;
+  Vec3<T> r;
+  r(0) = f * (c0 * v(0) - (c(1) * v(2) - c(2) * v(1)) + c(0) * cv);
+  r(1) = f * (c0 * v(1) - (c(2) * v(0) - c(0) * v(2)) + c(1) * cv);
+  r(2) = f * (c0 * v(2) - (c(0) * v(1) - c(1) * v(0)) + c(2) * cv);
+  return r;
 }
 
 /// H(c)^-1 = (c0 I - S(c) + c c^T/4) / 2, a polynomial (FORMULATION.md sec. 1).

@@ -17,6 +17,11 @@ struct StaticOptions {
   double tolerance = 1e-10;        // ||residual|| <= tolerance * force scale, or
   double increment_tolerance = 1e-10;  // ||correction|| <= this * ||increment of the step||
   double final_load_factor = 1.0;
+  /// Start each step from the previous step's change scaled to the new step (secant predictor);
+  /// off by default: on the strongly nonlinear benchmarks it did not save iterations.
+  bool secant_predictor = false;
+  /// Largest nodal rotation per Newton correction [rad]; larger corrections are scaled down.
+  double max_rotation_increment = 0.25;
   /// Called after every converged step with (load factor, state).
   std::function<void(double, const State&)> on_step;
 };
