@@ -16,6 +16,10 @@ Schema materials_schema() {
                                "reference of the mean thermal expansion coefficient", 0.0));
   s.attributes.push_back(nattr("/flaps/*", "stress_free_temperature", "K",
                                "temperature of zero thermal strain", 0.0));
+  s.attributes.push_back(nattr("/flaps/*", "outer_normal_sign", "1",
+                               "+1 if the outer wall lies to the left of the reference direction "
+                               "(start to end), -1 if to the right",
+                               -1.0, 1.0, true, AttrType::int64));
   s.attributes.push_back(sattr("/flaps/*", "shear_modulus_basis", "database, or derived from E and a given nu"));
   s.attributes.push_back(sattr("/flaps/*", "allowable_strain_basis", "how the allowable strain was obtained"));
   s.attributes.push_back(nattr("/flaps/*", "clamped_elements", "1",

@@ -145,6 +145,7 @@ TEST(Matmap, ExactAtTablePointsAndLinearBetween) {
     EXPECT_EQ(e.thermal_curvature[k], 0.0);  // no through-thickness difference
   }
   EXPECT_NE(out.str().find("Ti-6Al-4V"), std::string::npos);
+  EXPECT_EQ(r.flaps.at(0).outer_normal_sign, 1);  // the test flap has its outer wall on the left
 }
 
 TEST(Matmap, ThermalCurvatureFromTheSurfaceStrains) {

@@ -58,6 +58,20 @@ Model read_model(const std::filesystem::path& file) {
     const h5::MatrixXdR curve = reader.read_matrix(g + "/reference_curve", std::nullopt, 2);
     if (curve.rows() < 2) reader.fail(g + "/reference_curve", "fewer than two beam nodes");
     flap.elements = static_cast<std::size_t>(curve.rows() - 1);
+    // Which side the outer wall is on: from the middle of the reference curve to the nearest
+    // outer wall point, against the left normal there.
+    const h5::MatrixXdR outer = reader.read_matrix(g + "/outer_wall", std::nullopt, 2);
+    const Eigen::Index j = (curve.rows() - 1) / 2;
+    const Eigen::Vector2d a = curve.row(j).transpose(), b = curve.row(j + 1).transpose();
+    const Eigen::Vector2d middle = 0.5 * (a + b);
+    const Eigen::Vector2d normal(-(b - a).y(), (b - a).x());
+    Eigen::Index nearest = 0;
+    for (Eigen::Index i = 1; i < outer.rows(); ++i) {
+      if ((outer.row(i).transpose() - middle).norm() < (outer.row(nearest).transpose() - middle).norm()) nearest = i;
+    }
+    const double side = normal.dot(outer.row(nearest).transpose() - middle);
+    if (side == 0.0) reader.fail(g + "/outer_wall", "lies on the reference curve: cannot tell the outer side");
+    flap.outer_normal_sign = side > 0.0 ? 1 : -1;
     if (!(flap.thickness > 0.0)) reader.fail(g, "thickness must be positive");
     if (!(flap.width > 0.0)) reader.fail(g, "width must be positive");
     model.flaps.push_back(flap);
@@ -136,6 +150,7 @@ void write_materials(const std::filesystem::path& file, const formats::Header& h
     w.set_attr(g, "width", f.width);
     w.set_attr(g, "reference_temperature", f.reference_temperature);
     w.set_attr(g, "stress_free_temperature", f.stress_free_temperature);
+    w.set_attr(g, "outer_normal_sign", static_cast<std::int64_t>(f.outer_normal_sign));
     w.set_attr(g, "shear_modulus_basis", f.shear_modulus_basis);
     w.set_attr(g, "allowable_strain_basis", f.allowable_strain_basis);
     std::int64_t clamped = 0;

@@ -21,6 +21,9 @@ struct ModelFlap {
   double thickness = 0.0;  // [m]
   double width = 0.0;      // [m]
   std::size_t elements = 0;
+  // +1 if the outer wall lies to the left of the reference direction (start to end), -1 if
+  // to the right (from the model's walls).
+  int outer_normal_sign = 1;
 };
 struct Model {
   formats::Header header;
@@ -50,6 +53,7 @@ struct MaterialsFlap {
   double thickness = 0.0, width = 0.0;
   double reference_temperature = 0.0;    // of alpha_mean [K]
   double stress_free_temperature = 0.0;  // [K]
+  int outer_normal_sign = 1;             // see ModelFlap
   std::string shear_modulus_basis, allowable_strain_basis;
   bool has_strength = true;
   ElementProperties elements;

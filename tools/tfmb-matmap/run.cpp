@@ -87,6 +87,7 @@ Result run(const Options& options, const Logger& logger, std::ostream& out) {
     flap.material_given = mf.material;
     flap.thickness = mf.thickness;
     flap.width = mf.width;
+    flap.outer_normal_sign = mf.outer_normal_sign;
     flap.reference_temperature = material->reference_temperature;
     flap.stress_free_temperature = options.stress_free_temperature.value_or(
         model.stress_free_temperature.value_or(material->reference_temperature));

@@ -1,0 +1,219 @@
+#include "io.hpp"
+
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+
+#include "tfmb/common/errors.hpp"
+#include "tfmb/common/h5.hpp"
+#include "tfmb/formats/schema.hpp"
+
+namespace tfmb::strain {
+
+Structure read_structure(const std::filesystem::path& file) {
+  const h5::Reader reader = formats::open_checked(file, "structure");
+  Structure out;
+  out.header = formats::read_header(reader);
+  out.converged = reader.attr_i64("/", "converged") == 1;
+  const h5::MatrixXdR points = reader.read_matrix("/beam/points", std::nullopt, 3);
+  const auto n = static_cast<std::int64_t>(points.rows());
+  const h5::MatrixXiR segments = reader.read_index_matrix("/beam/segments", std::nullopt, 2, 0, n);
+  const auto e = static_cast<std::size_t>(segments.rows());
+  const h5::MatrixXdR strain = reader.read_matrix("/fields/cell/sectional_strain", e, 6);
+  const h5::MatrixXdR force = reader.read_matrix("/fields/cell/sectional_force", e, 6);
+  for (std::size_t k = 0; k < e; ++k) {
+    std::array<double, 6> a{}, b{};
+    for (int c = 0; c < 6; ++c) {
+      a[static_cast<std::size_t>(c)] = strain(static_cast<Eigen::Index>(k), c);
+      b[static_cast<std::size_t>(c)] = force(static_cast<Eigen::Index>(k), c);
+    }
+    out.sectional_strain.push_back(a);
+    out.sectional_force.push_back(b);
+  }
+  for (const std::string& name : reader.children("/flaps")) {
+    const std::string g = "/flaps/" + name;
+    StructureFlap flap;
+    flap.segments = reader.read_index_vector(g + "/segments", std::nullopt, 0, static_cast<std::int64_t>(e));
+    double length = 0.0;
+    for (std::size_t k = 0; k < flap.segments.size(); ++k) {
+      const auto row = static_cast<Eigen::Index>(flap.segments[k]);
+      const Eigen::Vector2d a(points(segments(row, 0), 0), points(segments(row, 0), 1));
+      const Eigen::Vector2d b(points(segments(row, 1), 0), points(segments(row, 1), 1));
+      if (k > 0) {
+        // Segments of a flap run head to tail.
+        const auto previous = static_cast<Eigen::Index>(flap.segments[k - 1]);
+        if (segments(previous, 1) != segments(row, 0)) {
+          reader.fail(g + "/segments", "segment " + std::to_string(k) + " does not start where segment " +
+                                           std::to_string(k - 1) + " ends");
+        }
+      }
+      flap.segment_middle.push_back(0.5 * (a + b));
+      flap.segment_arc_length.push_back(length + 0.5 * (b - a).norm());
+      length += (b - a).norm();
+    }
+    out.flaps[name] = std::move(flap);
+  }
+  return out;
+}
+
+std::map<std::string, MaterialsFlap> read_materials(const std::filesystem::path& file) {
+  const h5::Reader reader = formats::open_checked(file, "materials");
+  std::map<std::string, MaterialsFlap> out;
+  for (const std::string& name : reader.children("/flaps")) {
+    const std::string g = "/flaps/" + name;
+    MaterialsFlap f;
+    f.thickness = reader.attr_f64(g, "thickness");
+    f.outer_normal_sign = static_cast<int>(reader.attr_i64(g, "outer_normal_sign"));
+    f.material = reader.attr_string(g, "material");
+    f.temperature = reader.read_vector(g + "/temperature");
+    const std::size_t ne = f.temperature.size();
+    f.allowable_strain = reader.read_vector(g + "/allowable_strain", ne);
+    f.thermal_strain_inner = reader.read_vector(g + "/thermal_strain_inner", ne);
+    f.thermal_strain_outer = reader.read_vector(g + "/thermal_strain_outer", ne);
+    std::vector<std::size_t> shape;
+    const std::vector<double> k = reader.read_f64(g + "/section_stiffness", &shape);
+    for (std::size_t e = 0; e < ne; ++e) {
+      f.axial_stiffness.push_back(k[e * 36 + 0]);
+      f.bending_stiffness.push_back(k[e * 36 + 35]);
+    }
+    f.clamped = reader.read_index_vector(g + "/clamped", ne, 0, 2);
+    for (std::size_t e = 0; e < ne; ++e) {
+      if (!(f.allowable_strain[e] > 0.0)) {
+        reader.fail(g + "/allowable_strain", "element " + std::to_string(e) + ": not positive");
+      }
+    }
+    out[name] = std::move(f);
+  }
+  return out;
+}
+
+namespace {
+
+h5::MatrixXdR positions(const std::vector<Eigen::Vector2d>& p) {
+  h5::MatrixXdR m(static_cast<Eigen::Index>(p.size()), 2);
+  for (std::size_t i = 0; i < p.size(); ++i) m.row(static_cast<Eigen::Index>(i)) = p[i].transpose();
+  return m;
+}
+
+}  // namespace
+
+void write_strain(const std::filesystem::path& file, const formats::Header& header, const StrainResult& r,
+                  const formats::Provenance& provenance) {
+  h5::Writer w(file);
+  formats::write_header(w, "strain", header);
+  w.set_attr("/", "mechanical_basis", basis_name(r.basis));
+  w.set_attr("/", "worst_margin_total", r.worst_total.margin);
+  w.set_attr("/", "worst_margin_mechanical", r.worst_mechanical.margin);
+  w.set_attr("/", "worst_margin_thermal", r.worst_thermal.margin);
+  w.set_attr("/", "worst_flap", r.worst_total.flap);
+  w.set_attr("/", "worst_segment", static_cast<std::int64_t>(r.worst_total.segment));
+  w.set_attr("/", "worst_surface", r.worst_total.surface);
+  w.set_attr("/", "worst_position", std::vector<double>{r.worst_total.position.x(), r.worst_total.position.y()});
+  for (const FlapStrains& f : r.flaps) {
+    const std::string g = "/flaps/" + f.name;
+    auto column = [&](auto getter) {
+      std::vector<double> v;
+      for (const SectionStrains& s : f.strains) v.push_back(getter(s));
+      return v;
+    };
+    w.write(g + "/element", f.element, "1", "material element (materials.h5) of each beam segment");
+    w.write(g + "/s", f.s, "m", "arc length of the segment middle");
+    w.write(g + "/position", positions(f.position), "m", "reference position of the segment middle");
+    w.write(g + "/mechanical_inner", column([](const SectionStrains& s) { return s.mechanical_inner; }), "1", "");
+    w.write(g + "/mechanical_outer", column([](const SectionStrains& s) { return s.mechanical_outer; }), "1", "");
+    w.write(g + "/thermal_inner", column([](const SectionStrains& s) { return s.thermal_inner; }), "1", "");
+    w.write(g + "/thermal_outer", column([](const SectionStrains& s) { return s.thermal_outer; }), "1", "");
+    w.write(g + "/total_inner", column([](const SectionStrains& s) { return s.total_inner; }), "1", "");
+    w.write(g + "/total_outer", column([](const SectionStrains& s) { return s.total_outer; }), "1", "");
+    w.write(g + "/allowable", f.allowable, "1", "allowable strain at the element temperature");
+    w.write(g + "/margin_mechanical", f.margin_mechanical, "1", "allowable / max |mechanical| - 1");
+    w.write(g + "/margin_thermal", f.margin_thermal, "1", "allowable / max |thermal| - 1");
+    w.write(g + "/margin_total", f.margin_total, "1", "allowable / max |total| - 1");
+  }
+  std::vector<std::string> flap, surface;
+  std::vector<std::int64_t> segment, element;
+  std::vector<double> s, strain, margin;
+  std::vector<Eigen::Vector2d> position;
+  for (const Worst& x : r.worst_list) {
+    flap.push_back(x.flap);
+    surface.push_back(x.surface);
+    segment.push_back(static_cast<std::int64_t>(x.segment));
+    element.push_back(x.element);
+    s.push_back(x.s);
+    strain.push_back(x.strain);
+    margin.push_back(x.margin);
+    position.push_back(x.position);
+  }
+  w.write_strings("/worst/flap", flap, "flap of each of the lowest total margins, ascending");
+  w.write_strings("/worst/surface", surface, "inner or outer");
+  w.write("/worst/segment", segment, "1", "segment within the flap");
+  w.write("/worst/element", element, "1", "material element");
+  w.write("/worst/s", s, "m", "arc length");
+  w.write("/worst/position", positions(position), "m", "");
+  w.write("/worst/total_strain", strain, "1", "");
+  w.write("/worst/margin_total", margin, "1", "");
+  formats::write_provenance(w, provenance);
+  w.commit();
+}
+
+namespace {
+
+std::string json_string(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
+std::string json_number(double v) {
+  std::ostringstream o;
+  o << std::setprecision(10) << v;
+  return o.str();
+}
+
+std::string json_worst(const Worst& w) {
+  return "{\"flap\": " + json_string(w.flap) + ", \"segment\": " + std::to_string(w.segment) +
+         ", \"element\": " + std::to_string(w.element) + ", \"surface\": " + json_string(w.surface) +
+         ", \"s\": " + json_number(w.s) + ", \"x\": " + json_number(w.position.x()) +
+         ", \"y\": " + json_number(w.position.y()) + ", \"strain\": " + json_number(w.strain) +
+         ", \"allowable\": " + json_number(w.allowable) + ", \"margin\": " + json_number(w.margin) + "}";
+}
+
+}  // namespace
+
+void write_summary_json(const std::filesystem::path& file, const StrainResult& r) {
+  const std::filesystem::path tmp = file.string() + ".tmp";
+  {
+    std::ofstream out(tmp);
+    out << "{\n  \"format\": \"tfmb/strain-summary\",\n  \"mechanical_basis\": " << json_string(basis_name(r.basis))
+        << ",\n  \"worst\": {\n    \"mechanical\": " << json_worst(r.worst_mechanical)
+        << ",\n    \"thermal\": " << json_worst(r.worst_thermal) << ",\n    \"total\": " << json_worst(r.worst_total)
+        << "\n  },\n  \"flaps\": {";
+    for (std::size_t f = 0; f < r.flaps.size(); ++f) {
+      const FlapStrains& flap = r.flaps[f];
+      double mm = kMarginCap, mt = kMarginCap, mtot = kMarginCap, emax = 0.0;
+      for (std::size_t k = 0; k < flap.s.size(); ++k) {
+        mm = std::min(mm, flap.margin_mechanical[k]);
+        mt = std::min(mt, flap.margin_thermal[k]);
+        mtot = std::min(mtot, flap.margin_total[k]);
+        emax = std::max({emax, std::abs(flap.strains[k].total_inner), std::abs(flap.strains[k].total_outer)});
+      }
+      out << (f ? "," : "") << "\n    " << json_string(flap.name) << ": {\"segments\": " << flap.s.size()
+          << ", \"min_margin_mechanical\": " << json_number(mm) << ", \"min_margin_thermal\": " << json_number(mt)
+          << ", \"min_margin_total\": " << json_number(mtot) << ", \"max_abs_total_strain\": " << json_number(emax)
+          << "}";
+    }
+    out << "\n  },\n  \"lowest_total_margins\": [";
+    for (std::size_t i = 0; i < r.worst_list.size(); ++i) {
+      out << (i ? "," : "") << "\n    " << json_worst(r.worst_list[i]);
+    }
+    out << "\n  ]\n}\n";
+    if (!out) throw InternalError(tmp.string() + ": cannot write");
+  }
+  std::filesystem::rename(tmp, file);
+}
+
+}  // namespace tfmb::strain
