@@ -10,7 +10,7 @@
 
 int main(int argc, char** argv) {
   using namespace tfmb;
-  const double scale = argc > 1 ? std::atof(argv[1]) : 0.62;
+  const double scale = argc > 1 ? std::atof(argv[1]) : 0.66;
   const int algorithm = argc > 2 ? std::atoi(argv[2]) : 6;
   const auto spec = input::read_case(std::string(TFMB_SOURCE_DIR) + "/cases/simple-nozzle/case.toml", {});
   const auto curves = input::read_geometry(spec.geometry.file, spec.geometry.scale, spec.geometry.curve_samples);
