@@ -32,7 +32,7 @@ struct Assembler::Impl {
   void build_pattern();
   void add_entry(Eigen::SparseMatrix<double>& matrix, std::int64_t row, std::int64_t col,
                  double value) const {
-    if (is_dirichlet[static_cast<std::size_t>(row)] || is_dirichlet[static_cast<std::size_t>(col)]) return;
+    if (is_dirichlet[row] || is_dirichlet[col]) return;
     matrix.coeffRef(row, col) += value;
   }
 };
@@ -56,9 +56,9 @@ const BoundaryCurve& find_boundary(const SolidMesh& mesh, const std::string& nam
 }
 
 std::int64_t find_root(std::vector<std::int64_t>& parent, std::int64_t i) {
-  while (parent[static_cast<std::size_t>(i)] != i) {
-    parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
-    i = parent[static_cast<std::size_t>(i)];
+  while (parent[i] != i) {
+    parent[i] = parent[parent[i]];
+    i = parent[i];
   }
   return i;
 }
@@ -71,13 +71,13 @@ void Assembler::Impl::build_dofs(const std::vector<std::pair<std::int64_t, std::
   std::iota(parent.begin(), parent.end(), 0);
   for (const auto& [a, b] : ties) {
     const auto ra = find_root(parent, a), rb = find_root(parent, b);
-    if (ra != rb) parent[static_cast<std::size_t>(std::max(ra, rb))] = std::min(ra, rb);
+    if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);
   }
   dof_of_node.assign(n_nodes, -1);
   std::vector<std::int64_t> dof_of_root(n_nodes, -1);
   dof_count = 0;
   for (std::size_t i = 0; i < n_nodes; ++i) {
-    const auto root = static_cast<std::size_t>(find_root(parent, static_cast<std::int64_t>(i)));
+    const auto root = find_root(parent, static_cast<std::int64_t>(i));
     if (dof_of_root[root] < 0) dof_of_root[root] = static_cast<std::int64_t>(dof_count++);
     dof_of_node[i] = dof_of_root[root];
   }
@@ -89,12 +89,12 @@ void Assembler::Impl::build_pattern() {
   const auto& mesh = *problem->mesh;
   std::size_t estimate = dof_count;
   for (const auto& block : mesh.blocks) {
-    const auto npe = static_cast<std::size_t>(nodes_per_element(block.type));
+    const auto npe = nodes_per_element(block.type);
     estimate += block.size() * npe * npe;
   }
   triplets.reserve(estimate);
   auto add = [&](std::int64_t r, std::int64_t c) {
-    if (!is_dirichlet[static_cast<std::size_t>(r)] && !is_dirichlet[static_cast<std::size_t>(c)]) {
+    if (!is_dirichlet[r] && !is_dirichlet[c]) {
       triplets.emplace_back(r, c, 0.0);
     }
   };
@@ -105,14 +105,14 @@ void Assembler::Impl::build_pattern() {
     for (std::size_t e = 0; e < block.size(); ++e) {
       const auto nodes = block.element(e);
       for (auto a : nodes) {
-        for (auto b : nodes) add(dof_of_node[static_cast<std::size_t>(a)], dof_of_node[static_cast<std::size_t>(b)]);
+        for (auto b : nodes) add(dof_of_node[a], dof_of_node[b]);
       }
     }
   }
   for (const auto& p : gap_points) {
     std::vector<std::int64_t> dofs;
-    for (int k = 0; k < p.a_count; ++k) dofs.push_back(dof_of_node[static_cast<std::size_t>(p.a_nodes[static_cast<std::size_t>(k)])]);
-    for (int k = 0; k < p.b_count; ++k) dofs.push_back(dof_of_node[static_cast<std::size_t>(p.b_nodes[static_cast<std::size_t>(k)])]);
+    for (int k = 0; k < p.a_count; ++k) dofs.push_back(dof_of_node[p.a_nodes[k]]);
+    for (int k = 0; k < p.b_count; ++k) dofs.push_back(dof_of_node[p.b_nodes[k]]);
     for (auto a : dofs) {
       for (auto b : dofs) add(a, b);
     }
@@ -157,7 +157,7 @@ Assembler::Assembler(const ThermalProblem& problem, bool transient) : impl_(std:
 
   im.used.assign(im.dof_count, false);
   for (const auto& block : mesh.blocks) {
-    for (auto node : block.nodes) im.used[static_cast<std::size_t>(im.dof_of_node[static_cast<std::size_t>(node)])] = true;
+    for (auto node : block.nodes) im.used[im.dof_of_node[node]] = true;
     im.references.push_back(make_reference_element(block.type, stiffness_rule(block.type)));
   }
 
@@ -180,7 +180,7 @@ Assembler::Assembler(const ThermalProblem& problem, bool transient) : impl_(std:
           needs_arc_length ? boundary_arc_length(mesh, curve) : std::vector<double>(curve.nodes.size(), 0.0);
       if (const auto* imposed = std::get_if<ImposedTemperature>(&spec.condition)) {
         for (const auto& [node, value] : imposed_temperatures(curve, arc_length, *imposed, problem.trace_tolerance)) {
-          const auto d = static_cast<std::size_t>(im.dof_of_node[static_cast<std::size_t>(node)]);
+          const auto d = im.dof_of_node[node];
           im.is_dirichlet[d] = true;
           if (im.dirichlet_boundary[d] < 0) im.dirichlet_boundary[d] = static_cast<int>(i);
           dirichlet_sum[static_cast<Eigen::Index>(d)] += value;
@@ -243,24 +243,24 @@ void Assembler::assemble(const Eigen::VectorXd& t, const TimeTerm& time_term,
     for (std::size_t e = 0; e < block.size(); ++e, ++cell) {
       const auto nodes = block.element(e);
       for (Eigen::Index a = 0; a < npe; ++a) {
-        const auto node = nodes[static_cast<std::size_t>(a)];
-        dofs[static_cast<std::size_t>(a)] = im.dof_of_node[static_cast<std::size_t>(node)];
-        te[a] = t[dofs[static_cast<std::size_t>(a)]];
-        if (time_term.history) he[a] = (*time_term.history)[dofs[static_cast<std::size_t>(a)]];
+        const auto node = nodes[a];
+        dofs[a] = im.dof_of_node[node];
+        te[a] = t[dofs[a]];
+        if (time_term.history) he[a] = (*time_term.history)[dofs[a]];
         xy(a, 0) = mesh.points(node, 0);
         xy(a, 1) = mesh.points(node, 1);
       }
       re.setZero();
       if (tangent) ke.setZero();
       const ElementTimeTerm element_time{time_term.rate_factor, time_term.history ? &he : nullptr};
-      add_conduction_element(ref, xy, te, im.problem->materials[static_cast<std::size_t>(mesh.cell_material[cell])],
+      add_conduction_element(ref, xy, te, im.problem->materials[mesh.cell_material[cell]],
                              element_time, im.problem->volumetric_source, kind, re,
                              tangent ? &ke : nullptr);
       for (Eigen::Index a = 0; a < npe; ++a) {
-        residual[dofs[static_cast<std::size_t>(a)]] += re[a];
+        residual[dofs[a]] += re[a];
         if (!tangent) continue;
         for (Eigen::Index c = 0; c < npe; ++c) {
-          im.add_entry(*tangent, dofs[static_cast<std::size_t>(a)], dofs[static_cast<std::size_t>(c)], ke(a, c));
+          im.add_entry(*tangent, dofs[a], dofs[c], ke(a, c));
         }
       }
     }
@@ -269,16 +269,16 @@ void Assembler::assemble(const Eigen::VectorXd& t, const TimeTerm& time_term,
     std::int64_t d[3];
     double temperature = 0.0;
     for (int a = 0; a < p.count; ++a) {
-      d[a] = im.dof_of_node[static_cast<std::size_t>(p.nodes[static_cast<std::size_t>(a)])];
-      temperature += p.n[static_cast<std::size_t>(a)] * t[d[a]];
+      d[a] = im.dof_of_node[p.nodes[a]];
+      temperature += p.n[a] * t[d[a]];
     }
     const double flux = p.flux_out(temperature) * p.weight;
     const double slope = p.flux_out_slope(temperature) * p.weight;
     for (int a = 0; a < p.count; ++a) {
-      residual[d[a]] += p.n[static_cast<std::size_t>(a)] * flux;
+      residual[d[a]] += p.n[a] * flux;
       if (!tangent) continue;
       for (int c = 0; c < p.count; ++c) {
-        im.add_entry(*tangent, d[a], d[c], p.n[static_cast<std::size_t>(a)] * p.n[static_cast<std::size_t>(c)] * slope);
+        im.add_entry(*tangent, d[a], d[c], p.n[a] * p.n[c] * slope);
       }
     }
   }
@@ -288,13 +288,13 @@ void Assembler::assemble(const Eigen::VectorXd& t, const TimeTerm& time_term,
     double n[6];
     double jump = 0.0;
     for (int k = 0; k < p.a_count; ++k) {
-      d[k] = im.dof_of_node[static_cast<std::size_t>(p.a_nodes[static_cast<std::size_t>(k)])];
-      n[k] = p.a_n[static_cast<std::size_t>(k)];
+      d[k] = im.dof_of_node[p.a_nodes[k]];
+      n[k] = p.a_n[k];
       jump += n[k] * t[d[k]];
     }
     for (int k = 0; k < p.b_count; ++k) {
-      d[p.a_count + k] = im.dof_of_node[static_cast<std::size_t>(p.b_nodes[static_cast<std::size_t>(k)])];
-      n[p.a_count + k] = -p.b_n[static_cast<std::size_t>(k)];
+      d[p.a_count + k] = im.dof_of_node[p.b_nodes[k]];
+      n[p.a_count + k] = -p.b_n[k];
       jump += n[p.a_count + k] * t[d[p.a_count + k]];
     }
     const int count = p.a_count + p.b_count;
@@ -324,15 +324,15 @@ std::map<std::string, double> Assembler::boundary_heat_rates(const Eigen::Vector
   for (const auto& p : im.boundary_points) {
     double temperature = 0.0;
     for (int a = 0; a < p.count; ++a) {
-      temperature += p.n[static_cast<std::size_t>(a)] * t[im.dof_of_node[static_cast<std::size_t>(p.nodes[static_cast<std::size_t>(a)])]];
+      temperature += p.n[a] * t[im.dof_of_node[p.nodes[a]]];
     }
-    rates[specs[static_cast<std::size_t>(p.boundary)].boundary] -= p.flux_out(temperature) * p.weight;
+    rates[specs[p.boundary].boundary] -= p.flux_out(temperature) * p.weight;
   }
   Eigen::VectorXd residual;
   assemble(t, time_term, residual, nullptr, Tangent::picard);
   for (std::size_t d = 0; d < im.dof_count; ++d) {
     if (im.dirichlet_boundary[d] >= 0) {
-      rates[specs[static_cast<std::size_t>(im.dirichlet_boundary[d])].boundary] += residual[static_cast<Eigen::Index>(d)];
+      rates[specs[im.dirichlet_boundary[d]].boundary] += residual[static_cast<Eigen::Index>(d)];
     }
   }
   return rates;
@@ -343,9 +343,9 @@ std::vector<double> Assembler::contact_heat_rates(const Eigen::VectorXd& t) cons
   std::vector<double> rates(im.problem->contacts.size(), 0.0);
   for (const auto& p : im.gap_points) {
     double jump = 0.0;
-    for (int k = 0; k < p.a_count; ++k) jump += p.a_n[static_cast<std::size_t>(k)] * t[im.dof_of_node[static_cast<std::size_t>(p.a_nodes[static_cast<std::size_t>(k)])]];
-    for (int k = 0; k < p.b_count; ++k) jump -= p.b_n[static_cast<std::size_t>(k)] * t[im.dof_of_node[static_cast<std::size_t>(p.b_nodes[static_cast<std::size_t>(k)])]];
-    rates[static_cast<std::size_t>(p.contact)] += p.conductance * p.weight * jump;
+    for (int k = 0; k < p.a_count; ++k) jump += p.a_n[k] * t[im.dof_of_node[p.a_nodes[k]]];
+    for (int k = 0; k < p.b_count; ++k) jump -= p.b_n[k] * t[im.dof_of_node[p.b_nodes[k]]];
+    rates[p.contact] += p.conductance * p.weight * jump;
   }
   return rates;
 }
@@ -370,11 +370,11 @@ void Assembler::check_temperature_range(const Eigen::VectorXd& t) const {
   std::size_t cell = 0;
   for (const auto& block : mesh.blocks) {
     for (std::size_t e = 0; e < block.size(); ++e, ++cell) {
-      const auto& material = im.problem->materials[static_cast<std::size_t>(mesh.cell_material[cell])];
+      const auto& material = im.problem->materials[mesh.cell_material[cell]];
       const double low = material_min_temperature(material, im.transient);
       const double high = material_max_temperature(material, im.transient);
       for (auto node : block.element(e)) {
-        const double value = t[im.dof_of_node[static_cast<std::size_t>(node)]];
+        const double value = t[im.dof_of_node[node]];
         if (!(value >= low && value <= high)) {
           std::ostringstream message;
           message << "temperature " << value << " K at node " << node << " (x = "

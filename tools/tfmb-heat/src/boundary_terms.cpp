@@ -72,11 +72,11 @@ std::vector<BoundaryPoint> boundary_points(const SolidMesh& mesh, const Boundary
       p.boundary = boundary_index;
       double dx = 0.0, dy = 0.0, s = 0.0;
       for (int a = 0; a < npe; ++a) {
-        p.nodes[static_cast<std::size_t>(a)] = edge[static_cast<std::size_t>(a)];
-        p.n[static_cast<std::size_t>(a)] = n[a];
-        dx += dn[a] * mesh.points(edge[static_cast<std::size_t>(a)], 0);
-        dy += dn[a] * mesh.points(edge[static_cast<std::size_t>(a)], 1);
-        s += n[a] * arc_length[e * static_cast<std::size_t>(npe) + static_cast<std::size_t>(a)];
+        p.nodes[a] = edge[a];
+        p.n[a] = n[a];
+        dx += dn[a] * mesh.points(edge[a], 0);
+        dy += dn[a] * mesh.points(edge[a], 1);
+        s += n[a] * arc_length[e * npe + a];
       }
       p.weight = rule.weights[q] * std::hypot(dx, dy);
       if (const auto* c = std::get_if<Convection>(&condition)) {

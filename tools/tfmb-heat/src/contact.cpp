@@ -87,9 +87,9 @@ std::vector<GapPoint> gap_contact_points(const SolidMesh& mesh, const BoundaryCu
         p.contact = contact_index;
         Eigen::Vector2d x = Eigen::Vector2d::Zero(), dx = Eigen::Vector2d::Zero();
         for (int k = 0; k < npa; ++k) {
-          const auto node = edge[static_cast<std::size_t>(k)];
-          p.a_nodes[static_cast<std::size_t>(k)] = node;
-          p.a_n[static_cast<std::size_t>(k)] = n[k];
+          const auto node = edge[k];
+          p.a_nodes[k] = node;
+          p.a_n[k] = n[k];
           x += n[k] * mesh.points.row(node).transpose();
           dx += dn[k] * mesh.points.row(node).transpose();
         }
@@ -110,8 +110,8 @@ std::vector<GapPoint> gap_contact_points(const SolidMesh& mesh, const BoundaryCu
         const auto other = b.edge(best_edge);
         p.b_count = npb;
         for (int k = 0; k < npb; ++k) {
-          p.b_nodes[static_cast<std::size_t>(k)] = other[static_cast<std::size_t>(k)];
-          p.b_n[static_cast<std::size_t>(k)] = n[k];
+          p.b_nodes[k] = other[k];
+          p.b_n[k] = n[k];
         }
         points.push_back(p);
       }

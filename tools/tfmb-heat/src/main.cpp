@@ -25,6 +25,8 @@ int main(int argc, char** argv) {
   tfmb::cli::add_output_option(app, options.output, "thermal file (tfmb/thermal)");
   app.add_option("--environment-temperature", options.environment_temperature,
                  "Radiation sink temperature of the outer walls [K]")->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_option("--joint-conductance", options.joint_conductance,
+                 "Gap conductance between flap ends at joints [W/(m^2 K)]; 0: adiabatic ends")->capture_default_str()->check(CLI::NonNegativeNumber);
   app.add_option("--tolerance", options.newton.temperature_tolerance,
                  "Newton stops when the largest temperature update is below this [K]")->capture_default_str()->check(CLI::PositiveNumber);
   app.add_option("--max-iterations", options.newton.max_iterations, "Newton iteration limit")->capture_default_str()->check(CLI::PositiveNumber);

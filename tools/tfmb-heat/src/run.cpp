@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -190,6 +191,36 @@ int run(const Options& options, const Logger& log) {
       problem.boundary_conditions.push_back({name, Radiation{emissivity, options.environment_temperature}});
     }
   }
+  if (options.joint_conductance > 0.0 && model.exists("/joints")) {
+    // Each joint couples the closest pair of end walls of its two flaps.
+    auto centroid = [&](const std::string& name) {
+      const auto& curve = mesh.boundaries.at(name);
+      Eigen::Vector2d c = Eigen::Vector2d::Zero();
+      for (auto node : curve.nodes) c += mesh.points.row(node).transpose();
+      return Eigen::Vector2d(c / static_cast<double>(curve.nodes.size()));
+    };
+    for (const auto& joint : model.children("/joints")) {
+      const std::string group = "/joints/" + joint;
+      const auto flap_a = model.attr_string(group, "flap_a"), flap_b = model.attr_string(group, "flap_b");
+      double best = std::numeric_limits<double>::infinity();
+      std::string end_a, end_b;
+      for (const auto& [name_a, a] : solid_in.boundaries) {
+        if (a.kind != "solid_end" || a.flap != flap_a) continue;
+        for (const auto& [name_b, b] : solid_in.boundaries) {
+          if (b.kind != "solid_end" || b.flap != flap_b) continue;
+          const double distance = (centroid(name_a) - centroid(name_b)).norm();
+          if (distance < best) best = distance, end_a = name_a, end_b = name_b;
+        }
+      }
+      if (end_a.empty()) {
+        log.warn("joint '" + joint + "': no solid_end walls of flaps '" + flap_a + "' and '" + flap_b +
+                 "' in the solid mesh (continuous wall?); no joint contact");
+        continue;
+      }
+      problem.contacts.push_back({end_a, end_b, options.joint_conductance});
+      log.verbose("joint '" + joint + "': contact '" + end_a + "' - '" + end_b + "'");
+    }
+  }
   if (trace_temperatures.empty()) {
     flow.fail("/walls", "no wall trace matches a solid_inner wall of " + options.solid_mesh.string());
   }
@@ -279,6 +310,7 @@ int run(const Options& options, const Logger& log) {
     std::ostringstream settings;
     settings << "solid_boundary = \"" << solid_boundary << "\"\nemissivity = " << emissivity
              << "\nenvironment_temperature = " << options.environment_temperature
+             << "\njoint_conductance = " << options.joint_conductance
              << "\ntemperature_tolerance = " << options.newton.temperature_tolerance
              << "\nmax_iterations = " << options.newton.max_iterations << "\n";
     provenance.settings = settings.str();

@@ -9,7 +9,9 @@
 //                         (model /thermal@emissivity) to the environment temperature
 // A solid wall is matched to the flow wall of the same flap and side. solid_inner walls need a
 // trace; solid_outer walls without one are adiabatic (plus radiation where asked); solid_end
-// walls are adiabatic. Traces are moved onto the solid wall by projection (wall_mapping.hpp).
+// walls are adiabatic, unless --joint-conductance h_c > 0: then, for every joint of model.h5,
+// the closest pair of solid_end walls of its two flaps exchanges heat h_c (T_a - T_b) (gap
+// conductance contact). Traces are moved onto the solid wall by projection (wall_mapping.hpp).
 #include "tfmb/heat/problem.hpp"
 
 #include <filesystem>
@@ -28,6 +30,7 @@ struct Options {
   std::filesystem::path material_db;  // material database (material-db kind)
   std::filesystem::path output;       // thermal.h5
   double environment_temperature = 300.0;  // [K] radiation sink of the outer walls
+  double joint_conductance = 0.0;          // [W/(m^2 K)] across flap ends at joints; 0: none
   NewtonSettings newton;
   std::string command_line;           // stored in /provenance
 };
