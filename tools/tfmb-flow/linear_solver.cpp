@@ -116,7 +116,8 @@ BlockSparseMatrix make_pattern(int n, const std::vector<std::array<int, 2>>& edg
 void BlockIlu0::factorize(const BlockSparseMatrix& a) {
   lu_ = a;
   const int n = lu_.num_rows;
-  std::vector<int> pos_of_col(n, -1);
+  pos_of_col_.assign(n, -1);
+  auto& pos_of_col = pos_of_col_;
   double tmp[16];
   for (int i = 0; i < n; ++i) {
     for (int p = lu_.row_ptr[i]; p < lu_.row_ptr[i + 1]; ++p) pos_of_col[lu_.col[p]] = p;
@@ -138,25 +139,37 @@ void BlockIlu0::factorize(const BlockSparseMatrix& a) {
     std::copy(tmp, tmp + 16, d);
     for (int p = lu_.row_ptr[i]; p < lu_.row_ptr[i + 1]; ++p) pos_of_col[lu_.col[p]] = -1;
   }
+  factors_.resize(lu_.val.size());
+  for (std::size_t k = 0; k < factors_.size(); ++k) factors_[k] = static_cast<float>(lu_.val[k]);
 }
 
 void BlockIlu0::apply(const std::vector<double>& b, std::vector<double>& x) const {
   const int n = lu_.num_rows;
   x = b;
+  const float* f = factors_.data();
+  auto sub = [](const float* a, const double* v, double* y) {  // y -= A v
+    for (int r = 0; r < 4; ++r) {
+      y[r] -= static_cast<double>(a[4 * r]) * v[0] + static_cast<double>(a[4 * r + 1]) * v[1] +
+              static_cast<double>(a[4 * r + 2]) * v[2] + static_cast<double>(a[4 * r + 3]) * v[3];
+    }
+  };
   for (int i = 0; i < n; ++i) {
     double* xi = x.data() + 4 * static_cast<std::size_t>(i);
     for (int p = lu_.row_ptr[i]; p < lu_.diag_pos[i]; ++p) {
-      block_vec_sub(lu_.block(p), x.data() + 4 * static_cast<std::size_t>(lu_.col[p]), xi);
+      sub(f + 16 * static_cast<std::size_t>(p), x.data() + 4 * static_cast<std::size_t>(lu_.col[p]), xi);
     }
   }
   for (int i = n - 1; i >= 0; --i) {
     double* xi = x.data() + 4 * static_cast<std::size_t>(i);
     for (int p = lu_.diag_pos[i] + 1; p < lu_.row_ptr[i + 1]; ++p) {
-      block_vec_sub(lu_.block(p), x.data() + 4 * static_cast<std::size_t>(lu_.col[p]), xi);
+      sub(f + 16 * static_cast<std::size_t>(p), x.data() + 4 * static_cast<std::size_t>(lu_.col[p]), xi);
     }
-    const double* d = lu_.block(lu_.diag_pos[i]);
+    const float* d = f + 16 * static_cast<std::size_t>(lu_.diag_pos[i]);
     const double r[4] = {xi[0], xi[1], xi[2], xi[3]};
-    for (int k = 0; k < 4; ++k) xi[k] = d[4 * k] * r[0] + d[4 * k + 1] * r[1] + d[4 * k + 2] * r[2] + d[4 * k + 3] * r[3];
+    for (int k = 0; k < 4; ++k) {
+      xi[k] = static_cast<double>(d[4 * k]) * r[0] + static_cast<double>(d[4 * k + 1]) * r[1] +
+              static_cast<double>(d[4 * k + 2]) * r[2] + static_cast<double>(d[4 * k + 3]) * r[3];
+    }
   }
 }
 
@@ -190,16 +203,16 @@ GmresResult gmres(const BlockSparseMatrix& a, const BlockIlu0& m, const std::vec
   const double b_norm = std::sqrt(dot_product(b, b));
   if (b_norm == 0.0) return result;
   ws.v.resize(restart + 1);
-  ws.z.resize(restart);
   for (auto& vec : ws.v) vec.resize(n);
-  for (auto& vec : ws.z) vec.resize(n);
+  ws.z.resize(1);
+  ws.z[0].resize(n);
   ws.h.assign((restart + 1) * restart, 0.0);
   ws.cs.assign(restart, 0.0);
   ws.sn.assign(restart, 0.0);
   ws.g.assign(restart + 1, 0.0);
   ws.w.resize(n);
   auto& v = ws.v;
-  auto& z = ws.z;
+  auto& z = ws.z[0];
   auto& cs = ws.cs;
   auto& sn = ws.sn;
   auto& g = ws.g;
@@ -215,8 +228,8 @@ GmresResult gmres(const BlockSparseMatrix& a, const BlockIlu0& m, const std::vec
     int j = 0;
     for (; j < restart && result.iterations < max_iterations; ++j) {
       ++result.iterations;
-      m.apply(v[j], z[j]);
-      a.multiply(z[j], w);
+      m.apply(v[j], z);
+      a.multiply(z, w);
       for (int i = 0; i <= j; ++i) {  // modified Gram-Schmidt
         H(i, j) = dot_product(w, v[i]);
         const double hij = H(i, j);
@@ -245,7 +258,8 @@ GmresResult gmres(const BlockSparseMatrix& a, const BlockIlu0& m, const std::vec
         break;
       }
     }
-    // x += Z y with H y = g (upper triangular)
+    // x += M^-1 (V y) with H y = g (upper triangular): one preconditioner application instead
+    // of storing the preconditioned basis (right preconditioning, fixed M).
     std::vector<double>& y = ws.y;
     y.assign(j, 0.0);
     for (int i = j - 1; i >= 0; --i) {
@@ -253,9 +267,12 @@ GmresResult gmres(const BlockSparseMatrix& a, const BlockIlu0& m, const std::vec
       for (int k = i + 1; k < j; ++k) s -= H(i, k) * y[k];
       y[i] = s / H(i, i);
     }
+    std::fill(w.begin(), w.end(), 0.0);
     for (int i = 0; i < j; ++i) {
-      for (std::size_t k = 0; k < n; ++k) x[k] += y[i] * z[i][k];
+      for (std::size_t k = 0; k < n; ++k) w[k] += y[i] * v[i][k];
     }
+    m.apply(w, z);
+    for (std::size_t k = 0; k < n; ++k) x[k] += z[k];
     if (result.relative_residual <= rel_tol || result.iterations >= max_iterations) break;
     a.multiply(x, w);
     for (std::size_t k = 0; k < n; ++k) r[k] = b[k] - w[k];

@@ -29,12 +29,16 @@ BlockSparseMatrix make_pattern(int num_nodes, const std::vector<std::array<int, 
 
 class BlockIlu0 {
  public:
-  // Factorises a copy of the matrix in the same pattern; diagonal blocks are stored inverted.
+  // Factorises a copy of the matrix in the same pattern (in double precision); diagonal blocks
+  // are stored inverted. The factors used by apply() are kept in single precision: the
+  // triangular solves are memory bound, and a preconditioner needs no more digits.
   void factorize(const BlockSparseMatrix& a);
   void apply(const std::vector<double>& b, std::vector<double>& x) const;  // x = (LU)^-1 b
 
  private:
   BlockSparseMatrix lu_;
+  std::vector<float> factors_;  // lu_.val in single precision
+  std::vector<int> pos_of_col_;
 };
 
 struct GmresResult {

@@ -45,7 +45,7 @@ struct SolverSettings {
   // passes the reference of the run it continues, so a converged state stays converged.
   double residual_reference = 0.0;
   double linear_tolerance = 0.05; // relative, per nonlinear iteration
-  int gmres_restart = 40;
+  int gmres_restart = 20;
   int gmres_max_iterations = 80;
   double max_relative_update = 0.5;  // largest relative change of rho or p per iteration
   int print_every = 0;            // residual line on stderr every N iterations (0: silent)
