@@ -235,8 +235,9 @@ TEST(Matmap, BadInputsExit3WithALocatedMessage) {
   EXPECT_EQ(run_cli(in718.thermal.string() + " " + in718.model.string() + " --db " + database.string() +
                     " --poisson-ratio 0.29 --allowable-strain 0.005 --stress-free-temperature 300 -o " +
                     in718.output.string(), &err), 0) << err;
-  // Its CTE table starts at 298.15 K: the model's stress-free 293.15 K is refused by default.
+  // A stress-free temperature below its CTE table (0 F = 255.37 K) is refused, naming the option.
   EXPECT_EQ(run_cli(in718.thermal.string() + " " + in718.model.string() + " --db " + database.string() +
-                    " --poisson-ratio 0.29 --allowable-strain 0.005 -o " + in718.output.string(), &err), 3);
-  EXPECT_NE(err.find("/thermal@reference_temperature: stress-free temperature 293.15 K"), std::string::npos) << err;
+                    " --poisson-ratio 0.29 --allowable-strain 0.005 --stress-free-temperature 250 -o " +
+                    in718.output.string(), &err), 3);
+  EXPECT_NE(err.find("--stress-free-temperature: stress-free temperature 250 K"), std::string::npos) << err;
 }
