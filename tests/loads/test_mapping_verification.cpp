@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 #include <numbers>
+#include <cstdio>
 #include <Eigen/Geometry>
 
 #include "displace.hpp"
@@ -125,6 +126,9 @@ TEST(LoadsVerification, ConservativeKeepsForceAndMomentTo1e10) {
   const double f = l.traces.force.norm();
   EXPECT_LT((l.mapped.force - l.traces.force).norm() / f, 1e-10);
   EXPECT_LT(std::abs(l.mapped.moment - l.traces.moment) / std::max(std::abs(l.traces.moment), f * L), 1e-10);
+  std::printf("[figures] conservative totals: force %.2e, moment %.2e relative\n",
+              (l.mapped.force - l.traces.force).norm() / f,
+              std::abs(l.mapped.moment - l.traces.moment) / std::max(std::abs(l.traces.moment), f * L));
   // The distributed loads (L2 projection) carry the same totals as the nodal loads.
   std::vector<Vec2> nf;
   std::vector<double> nm;
@@ -186,6 +190,7 @@ TEST(LoadsVerification, UniformPressureOnAnArcGivesTheAnalyticResultant) {
   // Conservative: the chord polygon carries the arc's exact resultant.
   const FlapLoads cons = c.map(Method::conservative, 9, 50);
   EXPECT_LT((cons.mapped.force - F).norm() / F.norm(), 1e-12);
+  std::printf("[figures] arc, conservative: resultant error %.2e relative\n", (cons.mapped.force - F).norm() / F.norm());
   EXPECT_LT(std::abs(cons.mapped.moment - M) / (F.norm() * c.radius), 1e-12);
   // Linear: second-order in the element length (chord-based length ratio, straight
   // elements, interpolated wall normals); the error falls by 4 per halving.
@@ -194,6 +199,7 @@ TEST(LoadsVerification, UniformPressureOnAnArcGivesTheAnalyticResultant) {
     // Trace spacing refined with the beam (seven wall segments per element).
     const FlapLoads lin = c.map(Method::linear, nodes, 7 * (nodes - 1) + 1);
     const double error = (lin.mapped.force - F).norm() / F.norm();
+    std::printf("[figures] arc, linear, %d elements: resultant error %.3e relative\n", nodes - 1, error);
     if (previous > 0.0) {
       const double order = std::log2(previous / error);
       EXPECT_GT(order, 1.8) << nodes;
@@ -231,6 +237,8 @@ TEST(LoadsVerification, TraceRefinementConvergesAtSecondOrder) {
       const Vec2 x = beam.nodes()[i] - 0.5 * c.thickness * c.normal();
       nodal_error = std::max(nodal_error, std::abs(l.distributed_force[i].dot(c.normal()) - c.width * p_in(x)));
     }
+    std::printf("[figures] trace refinement, %d points: total error %.3e, nodal load error %.3e N/m\n", points,
+                total_error, nodal_error);
     if (previous_total > 0.0) {
       EXPECT_NEAR(std::log2(previous_total / total_error), 2.0, 0.15) << points;
       EXPECT_NEAR(std::log2(previous_nodal / nodal_error), 2.0, 0.3) << points;

@@ -1,6 +1,8 @@
 #include "io.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 
