@@ -104,7 +104,11 @@ TEST(Assembly, TangentWithJointsMatchesFiniteDifferences) {
   auto [p2, t2] = line(1.0, 2.0);
   const auto a = add_beam(m, 2, 0, p1, t1);
   const auto b = add_beam(m, 2, 0, p2, t2);
-  m.joints.push_back({JointKind::clamp, "root", -1, a.front()});
+  JointSpec root;
+  root.kind = JointKind::clamp;
+  root.name = "root";
+  root.node_b = a.front();
+  m.joints.push_back(root);
   JointSpec hinge;
   hinge.kind = JointKind::revolute;
   hinge.name = "hinge";

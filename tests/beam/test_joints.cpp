@@ -59,6 +59,21 @@ TEST(Joints, SeedHingedBeamsStaticDeflection) {
   EXPECT_NEAR(std::abs(phi), 2.0 * slope, 5e-3 * 2.0 * slope);
 }
 
+// The same hinged beams as a planar model (in-plane joint equations plus planar guides on every
+// node) give the same deflection as the 3D model.
+TEST(Joints, PlanarModelMatches3D) {
+  Model m3 = cases::seed_hinged_beams(0.5, 4, 0.01);
+  Model m2 = m3;
+  add_planar_constraints(m2);
+  Assembly a3(m3), a2(m2);
+  const StaticResult r3 = solve_static(a3, a3.initial_state());
+  const StaticResult r2 = solve_static(a2, a2.initial_state());
+  ASSERT_TRUE(r3.converged && r2.converged);
+  const int centre = m3.joints[2].node_a;
+  EXPECT_NEAR(r2.state.position[centre].y(), r3.state.position[centre].y(), 1e-12);
+  EXPECT_EQ(a2.num_multipliers(), 2 * 3 + 3 + 3 * static_cast<int>(m2.nodes.size()));
+}
+
 // Beam on a ground hinge with a torsional spring: tip deflection under a small transverse force is
 // the rigid rotation P L / k times L plus the cantilever's bending P L^3 / (3 EI).
 TEST(Joints, RevoluteTorsionalSpring) {

@@ -22,6 +22,7 @@ class Clearance final : public Joint {
                                   "); use a revolute joint for zero clearance");
     if (!(spec_.contact_stiffness > 0.0))
       throw std::invalid_argument("clearance joint '" + spec_.name + "': contact_stiffness must be > 0 [N/m]");
+    planar_ = model.planar;
     const Eigen::Matrix3d e = frame_from_axis(spec_.axis);
     const Node& nb = model.nodes[spec_.node_b];
     frame_b_ = nb.frame.transpose() * e;
@@ -32,7 +33,7 @@ class Clearance final : public Joint {
       ground_point_ = nb.position;
     }
   }
-  int num_equations() const override { return 3; }
+  int num_equations() const override { return planar_ ? 0 : 3; }
 
   template <int N>
   struct Kinematics {
@@ -76,6 +77,7 @@ class Clearance final : public Joint {
                        k.ea.col(2).dot(k.xb - k.xa)};
     out.force.setZero(nv);
     out.stiffness.setZero(nv, nv);
+    if (planar_) phi.clear();  // the planar guides already hold the axis and the axial motion
     fill_constraints<12>(phi, lambda, nv, out);
     const double cr = spec_.hole_radius - spec_.pin_radius;
     const H e2 = k.d.dot(k.d);
@@ -97,7 +99,7 @@ class Clearance final : public Joint {
             {"gap", std::max(cr - ecc, 0.0), "m"},
             {"penetration", pen, "m"},
             {"contact_force", spec_.contact_stiffness * pen, "N"},
-            {"axial_force", lambda(2), "N"}};
+            {"axial_force", planar_ ? 0.0 : lambda(2), "N"}};
   }
   std::string equation_name(int i) const override {
     static const char* names[] = {"axis tilt 1", "axis tilt 2", "axial slide"};
@@ -142,6 +144,7 @@ class Clearance final : public Joint {
     out.stiffness.block<3, 3>(ob, ob) += c * ctx.rate_factor * pt;
   }
 
+  bool planar_ = false;
   Eigen::Matrix3d frame_a_, frame_b_;
   Eigen::Vector3d ground_point_ = Eigen::Vector3d::Zero();
 };

@@ -76,6 +76,15 @@ void add_potential(const Hyper<N>& energy, int nv, JointEval& out) {
   }
 }
 
+/// Keeps the equations listed in `keep` (planar models drop the out-of-plane ones).
+template <int N>
+std::vector<Hyper<N>> select(const std::vector<Hyper<N>>& phi, const std::vector<int>& keep) {
+  if (keep.empty()) return phi;
+  std::vector<Hyper<N>> out;
+  for (int i : keep) out.push_back(phi[i]);
+  return out;
+}
+
 /// Global dofs of a node's six variables.
 inline void push_node_dofs(int node, JointEval& out) {
   out.rotation_blocks.push_back(static_cast<int>(out.dofs.size()) + 3);
@@ -98,5 +107,6 @@ std::unique_ptr<Joint> make_clamp(const Model& model, const JointSpec& spec);
 std::unique_ptr<Joint> make_rigid(const Model& model, const JointSpec& spec);
 std::unique_ptr<Joint> make_revolute(const Model& model, const JointSpec& spec);
 std::unique_ptr<Joint> make_clearance(const Model& model, const JointSpec& spec);
+std::unique_ptr<Joint> make_planar(const Model& model, const JointSpec& spec);
 
 }  // namespace tfmb::beam::detail

@@ -16,6 +16,9 @@ class Revolute final : public Joint {
     const Eigen::Matrix3d e = frame_from_axis(spec_.axis);
     const Node& nb = model.nodes[spec_.node_b];
     frame_b_ = nb.frame.transpose() * e;
+    planar_ = model.planar;
+    if (planar_ && std::abs(std::abs(spec_.axis.normalized().z()) - 1.0) > 1e-12)
+      throw std::invalid_argument("revolute joint '" + spec_.name + "': in a planar model the hinge axis must be z");
     if (spec_.node_a >= 0) {
       const Node& na = model.nodes[spec_.node_a];
       frame_a_ = na.frame.transpose() * e;
@@ -28,7 +31,10 @@ class Revolute final : public Joint {
       ground_point_ = nb.position;
     }
   }
-  int num_equations() const override { return spec_.prescribed ? 7 : 6; }
+  int num_equations() const override {
+    if (planar_) return spec_.prescribed ? 4 : 3;
+    return spec_.prescribed ? 7 : 6;
+  }
   int num_internal_dofs() const override { return 1; }
 
   void evaluate(const JointContext& ctx, const Eigen::VectorXd& lambda, JointEval& out) const override {
@@ -58,10 +64,11 @@ class Revolute final : public Joint {
     phi.push_back(ea.col(2).dot(eb.col(0)));
     phi.push_back(ea.col(2).dot(eb.col(1)));
     phi.push_back(ea.col(1).dot(eb.col(0)) * cos(phi_var) - ea.col(0).dot(eb.col(0)) * sin(phi_var));
-    if (spec_.prescribed) phi.push_back(phi_var - spec_.prescribed_angle * ctx.load_factor);
+    if (spec_.prescribed) phi.push_back(phi_var - prescribed_angle(ctx.load_factor));
 
     out.force.setZero(nv);
     out.stiffness.setZero(nv, nv);
+    if (planar_) phi = select(phi, spec_.prescribed ? std::vector<int>{0, 1, 5, 6} : std::vector<int>{0, 1, 5});
     fill_constraints<13>(phi, lambda, nv, out);
     const double angle = phi_var.v;
     if (spec_.spring_stiffness != 0.0) {
@@ -81,12 +88,13 @@ class Revolute final : public Joint {
                                {"reaction_force_y", lambda(1), "N"},
                                {"reaction_force_z", lambda(2), "N"},
                                {"spring_moment", spec_.spring_stiffness * (angle - spec_.spring_rest_angle), "N m"}};
-    if (spec_.prescribed) o.push_back({"actuator_moment", lambda(6), "N m"});
+    if (spec_.prescribed) o.push_back({"actuator_moment", lambda(lambda.size() - 1), "N m"});
     return o;
   }
   std::string equation_name(int i) const override {
     static const char* names[] = {"x", "y", "z", "axis tilt 1", "axis tilt 2", "angle", "actuator"};
-    return "revolute joint '" + spec_.name + "' (" + names[i] + ")";
+    static const int planar_map[] = {0, 1, 5, 6};
+    return "revolute joint '" + spec_.name + "' (" + names[planar_ ? planar_map[i] : i] + ")";
   }
 
  private:
@@ -94,6 +102,17 @@ class Revolute final : public Joint {
   int first_internal_dof_local(const JointContext& ctx) const {
     return first_internal_dof_ - 6 * static_cast<int>(ctx.model.nodes.size());
   }
+  /// Actuator angle: a table of (time or load factor, angle) if given, else angle x factor.
+  double prescribed_angle(double factor) const {
+    const auto& t = spec_.prescribed_table;
+    if (t.empty()) return spec_.prescribed_angle * factor;
+    if (factor <= t.front().first) return t.front().second;
+    for (size_t i = 1; i < t.size(); ++i)
+      if (factor <= t[i].first)
+        return t[i - 1].second + (t[i].second - t[i - 1].second) * (factor - t[i - 1].first) / (t[i].first - t[i - 1].first);
+    return t.back().second;
+  }
+  bool planar_ = false;
   Eigen::Matrix3d frame_a_, frame_b_;  // joint frame (e3 = hinge axis) in each body's material frame
   Eigen::Vector3d ground_point_ = Eigen::Vector3d::Zero();
 };

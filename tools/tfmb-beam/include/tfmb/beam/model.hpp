@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace tfmb::beam {
@@ -63,6 +64,7 @@ enum class JointKind {
   rigid,       // two nodes rigidly connected
   revolute,    // hinge about `axis`; relative rotation phi is an extra unknown
   clearance,   // revolute with radial clearance: pin on node_b in a hole on node_a
+  planar,      // keeps node_b in the x-y plane (z, rotations about x and y held)
 };
 
 /// Joint data. node_a = -1 means the ground (a fixed frame).
@@ -78,6 +80,9 @@ struct JointSpec {
   double damping = 0.0;           // [N m s/rad]
   bool prescribed = false;        // actuator: phi(t) = prescribed_angle * load factor (or time fn)
   double prescribed_angle = 0.0;  // [rad]
+  /// Optional actuator table (argument, angle [rad]); the argument is the load factor in statics
+  /// and the time [s] in dynamics. Overrides prescribed_angle when not empty.
+  std::vector<std::pair<double, double>> prescribed_table;
   // clearance options
   double hole_radius = 0.0;       // [m]
   double pin_radius = 0.0;        // [m]
@@ -94,7 +99,13 @@ struct Model {
   std::vector<NodalLoad> nodal_loads;
   std::vector<DistributedLoad> distributed_loads;
   Eigen::Vector3d gravity = Eigen::Vector3d::Zero();  // [m/s^2], applied as dead load m g
+  /// Planar model in the x-y plane: joints keep only their in-plane equations (x, y, rotation
+  /// about z); out-of-plane motion is removed by `planar` joints on every node.
+  bool planar = false;
 };
+
+/// Adds a planar joint on every node (for planar models).
+void add_planar_constraints(Model& model);
 
 /// Builds a straight or curved chain of `n_elements` quadratic elements along a curve given by
 /// position(s) and tangent(s), s in [0, 1]; the section frame has e1 = tangent and e3 = `normal3`
