@@ -113,31 +113,48 @@ BlockSparseMatrix make_pattern(int n, const std::vector<std::array<int, 2>>& edg
   return m;
 }
 
-void BlockIlu0::factorize(const BlockSparseMatrix& a) {
+void BlockIlu0::factorize(const BlockSparseMatrix& a, int partitions) {
   lu_ = a;
   const int n = lu_.num_rows;
+  partitions_ = std::max(1, std::min(partitions, n));
   pos_of_col_.assign(n, -1);
-  auto& pos_of_col = pos_of_col_;
-  double tmp[16];
-  for (int i = 0; i < n; ++i) {
-    for (int p = lu_.row_ptr[i]; p < lu_.row_ptr[i + 1]; ++p) pos_of_col[lu_.col[p]] = p;
-    for (int p = lu_.row_ptr[i]; p < lu_.diag_pos[i]; ++p) {
-      const int k = lu_.col[p];
-      // L_ik = A_ik * inv(U_kk)
-      block_mul(lu_.block(p), lu_.block(lu_.diag_pos[k]), tmp);
-      std::copy(tmp, tmp + 16, lu_.block(p));
-      for (int q = lu_.diag_pos[k] + 1; q < lu_.row_ptr[k + 1]; ++q) {
-        const int target = pos_of_col[lu_.col[q]];
-        if (target >= 0) block_mul_sub(lu_.block(p), lu_.block(q), lu_.block(target));
+  // Each partition only reads and writes rows and columns of its own range, so the partitions
+  // are independent (and pos_of_col_ can be shared).
+#pragma omp parallel for schedule(static, 1)
+  for (int part = 0; part < partitions_; ++part) {
+    const int lo = static_cast<int>(static_cast<long>(n) * part / partitions_);
+    const int hi = static_cast<int>(static_cast<long>(n) * (part + 1) / partitions_);
+    auto& pos_of_col = pos_of_col_;
+    double tmp[16];
+    for (int i = lo; i < hi; ++i) {
+      for (int p = lu_.row_ptr[i]; p < lu_.row_ptr[i + 1]; ++p) {
+        const int c = lu_.col[p];
+        if (c >= lo && c < hi) pos_of_col[c] = p;
+      }
+      for (int p = lu_.row_ptr[i]; p < lu_.diag_pos[i]; ++p) {
+        const int k = lu_.col[p];
+        if (k < lo) continue;
+        // L_ik = A_ik * inv(U_kk)
+        block_mul(lu_.block(p), lu_.block(lu_.diag_pos[k]), tmp);
+        std::copy(tmp, tmp + 16, lu_.block(p));
+        for (int q = lu_.diag_pos[k] + 1; q < lu_.row_ptr[k + 1]; ++q) {
+          const int c = lu_.col[q];
+          if (c >= hi) continue;
+          const int target = pos_of_col[c];
+          if (target >= 0) block_mul_sub(lu_.block(p), lu_.block(q), lu_.block(target));
+        }
+      }
+      double* d = lu_.block(lu_.diag_pos[i]);
+      if (!invert_block(d, tmp)) {
+        // A singular pivot only happens for a broken operator; fall back to the identity.
+        for (int k = 0; k < 16; ++k) tmp[k] = (k % 5 == 0) ? 1.0 : 0.0;
+      }
+      std::copy(tmp, tmp + 16, d);
+      for (int p = lu_.row_ptr[i]; p < lu_.row_ptr[i + 1]; ++p) {
+        const int c = lu_.col[p];
+        if (c >= lo && c < hi) pos_of_col[c] = -1;
       }
     }
-    double* d = lu_.block(lu_.diag_pos[i]);
-    if (!invert_block(d, tmp)) {
-      // A singular pivot only happens for a broken operator; fall back to the identity.
-      for (int k = 0; k < 16; ++k) tmp[k] = (k % 5 == 0) ? 1.0 : 0.0;
-    }
-    std::copy(tmp, tmp + 16, d);
-    for (int p = lu_.row_ptr[i]; p < lu_.row_ptr[i + 1]; ++p) pos_of_col[lu_.col[p]] = -1;
   }
   factors_.resize(lu_.val.size());
   for (std::size_t k = 0; k < factors_.size(); ++k) factors_[k] = static_cast<float>(lu_.val[k]);
@@ -145,7 +162,7 @@ void BlockIlu0::factorize(const BlockSparseMatrix& a) {
 
 void BlockIlu0::apply(const std::vector<double>& b, std::vector<double>& x) const {
   const int n = lu_.num_rows;
-  x = b;
+  x.resize(b.size());
   const float* f = factors_.data();
   auto sub = [](const float* a, const double* v, double* y) {  // y -= A v
     for (int r = 0; r < 4; ++r) {
@@ -153,22 +170,31 @@ void BlockIlu0::apply(const std::vector<double>& b, std::vector<double>& x) cons
               static_cast<double>(a[4 * r + 2]) * v[2] + static_cast<double>(a[4 * r + 3]) * v[3];
     }
   };
-  for (int i = 0; i < n; ++i) {
-    double* xi = x.data() + 4 * static_cast<std::size_t>(i);
-    for (int p = lu_.row_ptr[i]; p < lu_.diag_pos[i]; ++p) {
-      sub(f + 16 * static_cast<std::size_t>(p), x.data() + 4 * static_cast<std::size_t>(lu_.col[p]), xi);
+#pragma omp parallel for schedule(static, 1)
+  for (int part = 0; part < partitions_; ++part) {
+    const int lo = static_cast<int>(static_cast<long>(n) * part / partitions_);
+    const int hi = static_cast<int>(static_cast<long>(n) * (part + 1) / partitions_);
+    std::copy(b.begin() + 4 * static_cast<std::size_t>(lo), b.begin() + 4 * static_cast<std::size_t>(hi),
+              x.begin() + 4 * static_cast<std::size_t>(lo));
+    for (int i = lo; i < hi; ++i) {
+      double* xi = x.data() + 4 * static_cast<std::size_t>(i);
+      for (int p = lu_.row_ptr[i]; p < lu_.diag_pos[i]; ++p) {
+        const int c = lu_.col[p];
+        if (c >= lo) sub(f + 16 * static_cast<std::size_t>(p), x.data() + 4 * static_cast<std::size_t>(c), xi);
+      }
     }
-  }
-  for (int i = n - 1; i >= 0; --i) {
-    double* xi = x.data() + 4 * static_cast<std::size_t>(i);
-    for (int p = lu_.diag_pos[i] + 1; p < lu_.row_ptr[i + 1]; ++p) {
-      sub(f + 16 * static_cast<std::size_t>(p), x.data() + 4 * static_cast<std::size_t>(lu_.col[p]), xi);
-    }
-    const float* d = f + 16 * static_cast<std::size_t>(lu_.diag_pos[i]);
-    const double r[4] = {xi[0], xi[1], xi[2], xi[3]};
-    for (int k = 0; k < 4; ++k) {
-      xi[k] = static_cast<double>(d[4 * k]) * r[0] + static_cast<double>(d[4 * k + 1]) * r[1] +
-              static_cast<double>(d[4 * k + 2]) * r[2] + static_cast<double>(d[4 * k + 3]) * r[3];
+    for (int i = hi - 1; i >= lo; --i) {
+      double* xi = x.data() + 4 * static_cast<std::size_t>(i);
+      for (int p = lu_.diag_pos[i] + 1; p < lu_.row_ptr[i + 1]; ++p) {
+        const int c = lu_.col[p];
+        if (c < hi) sub(f + 16 * static_cast<std::size_t>(p), x.data() + 4 * static_cast<std::size_t>(c), xi);
+      }
+      const float* d = f + 16 * static_cast<std::size_t>(lu_.diag_pos[i]);
+      const double r[4] = {xi[0], xi[1], xi[2], xi[3]};
+      for (int k = 0; k < 4; ++k) {
+        xi[k] = static_cast<double>(d[4 * k]) * r[0] + static_cast<double>(d[4 * k + 1]) * r[1] +
+                static_cast<double>(d[4 * k + 2]) * r[2] + static_cast<double>(d[4 * k + 3]) * r[3];
+      }
     }
   }
 }

@@ -32,13 +32,17 @@ class BlockIlu0 {
   // Factorises a copy of the matrix in the same pattern (in double precision); diagonal blocks
   // are stored inverted. The factors used by apply() are kept in single precision: the
   // triangular solves are memory bound, and a preconditioner needs no more digits.
-  void factorize(const BlockSparseMatrix& a);
+  // With partitions > 1, the rows are cut into that many contiguous ranges and couplings between
+  // ranges are dropped (block-Jacobi of ILU(0) blocks): the ranges are factorised and solved in
+  // parallel, and the result does not depend on the thread count.
+  void factorize(const BlockSparseMatrix& a, int partitions = 1);
   void apply(const std::vector<double>& b, std::vector<double>& x) const;  // x = (LU)^-1 b
 
  private:
   BlockSparseMatrix lu_;
   std::vector<float> factors_;  // lu_.val in single precision
   std::vector<int> pos_of_col_;
+  int partitions_ = 1;
 };
 
 struct GmresResult {

@@ -473,7 +473,7 @@ SolveReport FlowSolver::solve() {
         }
       }
     }
-    ilu_.factorize(jac_);
+    ilu_.factorize(jac_, settings_.ilu_partitions);
     const GmresResult lin = gmres(jac_, ilu_, rhs, du, settings_.linear_tolerance, settings_.gmres_restart,
                                   settings_.gmres_max_iterations, gmres_workspace_);
     rec.linear_iterations = lin.iterations;

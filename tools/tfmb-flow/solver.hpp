@@ -46,6 +46,9 @@ struct SolverSettings {
   double residual_reference = 0.0;
   double linear_tolerance = 0.05; // relative, per nonlinear iteration
   int gmres_restart = 20;
+  // ILU(0) partitions (independent row ranges, see BlockIlu0): 2 lets two threads share the
+  // preconditioner; the same value gives the same result on any number of threads.
+  int ilu_partitions = 2;
   int gmres_max_iterations = 80;
   double max_relative_update = 0.5;  // largest relative change of rho or p per iteration
   int print_every = 0;            // residual line on stderr every N iterations (0: silent)
