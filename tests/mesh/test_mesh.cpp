@@ -107,7 +107,8 @@ TEST(SolidMesh, EveryCellLinksToItsBeamElement) {
 namespace {
 
 // Writes a walldisp file rotating the walls of one flap rigidly about `centre` by `angle`, with
-// x0 the mesh's own wall nodes; or, with `shift`, translating them.
+// x0 the mesh's own wall nodes (with their ids, as tfmb-loads --mesh writes); or, with `shift`,
+// translating them.
 void write_rotation(const formats::Mesh& m, const std::string& flap, const Eigen::Vector2d& centre, double angle,
                     const Eigen::Vector2d& shift, const std::filesystem::path& file) {
   h5::Writer w(file);
@@ -117,10 +118,12 @@ void write_rotation(const formats::Mesh& m, const std::string& flap, const Eigen
   for (const auto& [name, b] : m.boundaries) {
     if (b.flap != flap) continue;
     h5::MatrixXdR x0(b.edges.rows() + 1, 2), u(b.edges.rows() + 1, 2);
+    std::vector<std::int64_t> nodes;
     for (Eigen::Index e = 0; e <= b.edges.rows(); ++e) {
       const auto node = e < b.edges.rows() ? b.edges(e, 0) : b.edges(e - 1, 1);
       const Eigen::Vector2d p = m.points.row(node).transpose();
       x0.row(e) = p.transpose();
+      nodes.push_back(node);
       u.row(e) = (rotation * (p - centre) + centre - p + shift).transpose();
     }
     w.create_group("/walls/" + name);
@@ -128,6 +131,7 @@ void write_rotation(const formats::Mesh& m, const std::string& flap, const Eigen
     w.set_attr("/walls/" + name, "side", b.side);
     w.write("/walls/" + name + "/x0", x0, "m");
     w.write("/walls/" + name + "/displacement", u, "m");
+    w.write("/walls/" + name + "/node", nodes, "1");
   }
   w.commit();
 }
@@ -171,6 +175,45 @@ TEST(Deform, RigidTwoDegreeRotationOfOneFlapKeepsCellsValidAndWallsExact) {
   // Far-field nodes do not move.
   const auto& far = m.boundaries.at("farfield_upper");
   EXPECT_EQ((moved.points.row(far.edges(0, 0)) - m.points.row(far.edges(0, 0))).norm(), 0.0);
+}
+
+TEST(Deform, ModelWallDisplacementMovesTheWholeFlapIncludingItsEndFace) {
+  // tfmb-loads without --mesh writes one curve per model wall (<flap>_inner, <flap>_outer) and
+  // no end face: the mesh's wall nodes on those curves move exactly, the end face and the
+  // join nodes take the nearest curve point's displacement.
+  const auto model = load_case("simple-nozzle");
+  mesh::FlowMeshReport report;
+  mesh::FlowMeshOptions options;
+  options.scale = 4.0;
+  const auto m = mesh::build_flow_mesh(model, options, report, quiet());
+  const input::Flap* flap = model.find_flap("upper_3");
+  Eigen::Vector2d hinge = model.joints[1].point;
+  ASSERT_EQ(model.joints[1].name, "upper_23");
+  const double angle = 2.0 * M_PI / 180.0;
+  const Eigen::Matrix2d rotation = Eigen::Rotation2D<double>(angle).toRotationMatrix();
+  std::vector<mesh::WallDisplacement> walls;
+  for (const auto& [side, line] : {std::pair{"inner", &flap->inner_wall}, std::pair{"outer", &flap->outer_wall}}) {
+    mesh::WallDisplacement w;
+    w.boundary = std::string("upper_3_") + side;
+    w.flap = "upper_3";
+    for (const auto& p : *line) {
+      w.x0.push_back(p);
+      w.displacement.push_back(rotation * (p - hinge) + hinge - p);
+    }
+    walls.push_back(w);
+  }
+  mesh::DeformReport deform_report;
+  const auto moved = mesh::deform_mesh(m, walls, deform_report);
+  EXPECT_EQ(deform_report.quality.invalid_cells, 0u);
+  EXPECT_GT(deform_report.projected_nodes, 0u);  // the end face at least
+  EXPECT_LT(deform_report.largest_projection, flap->thickness);
+  // The end face moved with the flap (to the accuracy of the nearest-point rule: theta * t).
+  const auto& end = m.boundaries.at("upper_3_end");
+  const auto node = end.edges(0, 0);
+  const Eigen::Vector2d p = m.points.row(node).transpose();
+  const Eigen::Vector2d expected = rotation * (p - hinge) + hinge;
+  EXPECT_LT((moved.points.row(node).transpose() - expected).norm(), angle * flap->thickness);
+  EXPECT_GT((moved.points.row(node) - m.points.row(node)).norm(), 0.5 * angle * 0.2);
 }
 
 TEST(Deform, FoldingDisplacementIsRefusedWithTheAdmissibleFraction) {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <limits>
 #include <sstream>
 
 #include "mesh_tools.hpp"
@@ -43,12 +44,17 @@ std::vector<WallDisplacement> read_walldisp(const std::filesystem::path& file) {
   for (const auto& name : r.children("/walls")) {
     WallDisplacement w;
     w.boundary = name;
+    if (r.has_attr("/walls/" + name, "flap")) w.flap = r.attr_string("/walls/" + name, "flap");
     const auto x0 = r.read_matrix("/walls/" + name + "/x0", {}, 2);
     const auto u = r.read_matrix("/walls/" + name + "/displacement", x0.rows(), 2);
     if (x0.rows() < 1) r.fail("/walls/" + name + "/x0", "no points");
     for (Eigen::Index i = 0; i < x0.rows(); ++i) {
       w.x0.emplace_back(x0(i, 0), x0(i, 1));
       w.displacement.emplace_back(u(i, 0), u(i, 1));
+    }
+    if (r.exists("/walls/" + name + "/node")) {
+      w.nodes = r.read_index_vector("/walls/" + name + "/node", static_cast<std::size_t>(x0.rows()), 0,
+                                    std::numeric_limits<std::int64_t>::max());
     }
     walls.push_back(std::move(w));
   }
@@ -71,37 +77,107 @@ Mesh deform_mesh(const Mesh& mesh, const std::vector<WallDisplacement>& walls, D
   // Prescribed displacements: walls from walldisp, every other boundary node fixed.
   std::map<std::int64_t, Eigen::Vector2d> prescribed;
   std::map<std::int64_t, double> node_length;  // boundary length associated with each node
+  const double tight = 1e-9 * extent + 1e-12;
+  // 1. Points that name their mesh node.
+  for (const auto& w : walls) {
+    if (w.nodes.empty()) continue;
+    for (std::size_t k = 0; k < w.nodes.size(); ++k) {
+      const auto node = w.nodes[k];
+      if (node >= static_cast<std::int64_t>(n)) {
+        throw BadInput("walldisp: /walls/" + w.boundary + "/node: node " + std::to_string(node) +
+                       " is not in the flow mesh (" + std::to_string(n) + " nodes)");
+      }
+      const double d = (x[static_cast<std::size_t>(node)] - w.x0[k]).norm();
+      if (d > tight + 1e-6 * extent) {
+        throw BadInput("walldisp: /walls/" + w.boundary + "/x0 row " + std::to_string(k) + " is " + num(d) +
+                       " m from flow-mesh node " + std::to_string(node) + ": computed for another mesh");
+      }
+      prescribed[node] = w.displacement[k];
+    }
+  }
+  // 2. Flap wall boundaries of the mesh: interpolate along the walldisp curve of the same name,
+  //    or project onto the curves of the same flap.
+  auto interpolate = [](const WallDisplacement& w, const Eigen::Vector2d& p, Eigen::Vector2d& u) {
+    double best = 1e300;
+    if (w.x0.size() == 1) {
+      u = w.displacement[0];
+      return (p - w.x0[0]).norm();
+    }
+    for (std::size_t s = 0; s + 1 < w.x0.size(); ++s) {
+      double t = 0.0;
+      const double d = geometry::distance_to_segment(p, w.x0[s], w.x0[s + 1], &t);
+      if (d < best) {
+        best = d;
+        u = (1 - t) * w.displacement[s] + t * w.displacement[s + 1];
+      }
+    }
+    return best;
+  };
   for (const auto& w : walls) {
     auto it = mesh.boundaries.find(w.boundary);
-    if (it == mesh.boundaries.end()) {
+    if (it == mesh.boundaries.end() && (w.flap.empty() || w.nodes.size())) {
       throw BadInput("walldisp: boundary '" + w.boundary + "' is not in the flow mesh");
     }
-    if (it->second.kind != "wall" && it->second.kind != "slip_wall") {
+    if (it != mesh.boundaries.end() && it->second.kind != "wall" && it->second.kind != "slip_wall") {
       throw BadInput("walldisp: boundary '" + w.boundary + "' is a " + it->second.kind + " boundary, not a wall");
     }
-    const double tolerance = 1e-9 * extent + 1e-12;
-    const auto& edges = it->second.edges;
-    for (Eigen::Index e = 0; e < edges.rows(); ++e) {
+  }
+  report.projected_nodes = 0;
+  report.largest_projection = 0.0;
+  for (const auto& [name, b] : mesh.boundaries) {
+    if (b.kind != "wall" && b.kind != "slip_wall") continue;
+    std::vector<const WallDisplacement*> same_name, same_flap;
+    for (const auto& w : walls) {
+      if (!w.nodes.empty()) continue;
+      if (w.boundary == name) same_name.push_back(&w);
+      else if (!b.flap.empty() && w.flap == b.flap) same_flap.push_back(&w);
+    }
+    if (same_name.empty() && same_flap.empty()) continue;
+    // Length of this wall and, for a flap, of all its walls (an end face is short but lies
+    // within half a thickness of the flap's other walls).
+    double boundary_length = 0.0;
+    for (const auto& [other_name, other] : mesh.boundaries) {
+      if (other_name != name && (b.flap.empty() || other.flap != b.flap)) continue;
+      for (Eigen::Index e = 0; e < other.edges.rows(); ++e) {
+        boundary_length += (x[static_cast<std::size_t>(other.edges(e, 0))] - x[static_cast<std::size_t>(other.edges(e, 1))]).norm();
+      }
+    }
+    for (Eigen::Index e = 0; e < b.edges.rows(); ++e) {
       for (int k = 0; k < 2; ++k) {
-        const std::int64_t node = edges(e, k);
+        const std::int64_t node = b.edges(e, k);
         if (prescribed.count(node)) continue;
         const Eigen::Vector2d& p = x[static_cast<std::size_t>(node)];
-        Eigen::Vector2d u = w.displacement[0];
-        if (w.x0.size() > 1) {
-          double best = 1e300;
-          for (std::size_t s = 0; s + 1 < w.x0.size(); ++s) {
-            double t = 0.0;
-            const double d = geometry::distance_to_segment(p, w.x0[s], w.x0[s + 1], &t);
+        Eigen::Vector2d u = Eigen::Vector2d::Zero();
+        Eigen::Vector2d candidate = Eigen::Vector2d::Zero();
+        double best = 1e300;
+        for (const auto* w : same_name) {
+          const double d = interpolate(*w, p, candidate);
+          if (d < best) {
+            best = d;
+            u = candidate;
+          }
+        }
+        if (best > tight) {
+          for (const auto* w : same_flap) {
+            const double d = interpolate(*w, p, candidate);
             if (d < best) {
               best = d;
-              u = (1 - t) * w.displacement[s] + t * w.displacement[s + 1];
+              u = candidate;
             }
           }
-          if (best > tolerance + 1e-6 * extent) {
+        }
+        if (best > tight) {
+          // Joins, lips and end faces are not on the walldisp curves; within a few per cent of
+          // the wall's length they take the nearest curve point's displacement.
+          const double loose = 0.05 * std::max(boundary_length, 1e-3 * extent);
+          if (best > loose) {
             throw BadInput("walldisp: node " + std::to_string(node) + " at " + input::format_point(p) + " of wall '" +
-                           w.boundary + "' is " + num(best) + " m from the walldisp x0 curve: the displacement "
-                           "was computed for another mesh or geometry");
+                           name + "' is " + num(best) + " m from the walldisp curves of " +
+                           (same_name.empty() ? "flap '" + b.flap + "'" : "'" + name + "'") +
+                           ": the displacement was computed for another mesh or geometry");
           }
+          ++report.projected_nodes;
+          report.largest_projection = std::max(report.largest_projection, best);
         }
         prescribed[node] = u;
       }

@@ -56,7 +56,9 @@ Mesh build_solid_mesh(const Model& model, SolidLink& link);
 
 // --- deformation ---------------------------------------------------------------------------
 struct WallDisplacement {
-  std::string boundary;
+  std::string boundary;              // a flow-mesh boundary name, or <flap>_<side> of the model
+  std::string flap;
+  std::vector<std::int64_t> nodes;   // flow-mesh node of each point (empty: points of the model)
   input::Polyline x0;                // [m]
   std::vector<Eigen::Vector2d> displacement;  // [m]
 };
@@ -65,10 +67,15 @@ struct DeformReport {
   Quality quality;
   double admissible_fraction = 1.0;  // largest fraction of the displacement keeping cells valid
   std::size_t moved_wall_nodes = 0;
+  std::size_t projected_nodes = 0;   // wall nodes off the walldisp curves (joins, lips, end faces)
+  double largest_projection = 0.0;   // [m] their largest distance to the curves
 };
-// Moves the wall nodes of the named boundaries by the interpolated displacement and the rest by
-// inverse-distance weighting (Luke, Collins & Blades 2012). Throws BadInput (with the admissible
-// fraction found by bisection) if a cell would invert.
+// Moves the wall nodes by the wall displacement and the rest by inverse-distance weighting (Luke,
+// Collins & Blades 2012). Wall nodes: given by node id (walldisp `node`), else interpolated along
+// the walldisp curve of the same name, else (flap walls the walldisp does not list, e.g. end
+// faces, and the joins between flaps) taken from the nearest point of that flap's walldisp
+// curves. Throws BadInput (with the admissible fraction found by bisection) if a cell would
+// invert.
 Mesh deform_mesh(const Mesh& mesh, const std::vector<WallDisplacement>& walls, DeformReport& report);
 
 // --- commands ------------------------------------------------------------------------------

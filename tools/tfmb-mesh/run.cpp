@@ -125,6 +125,10 @@ int run(const Options& options, const Logger& log) {
       w.commit();
     }
     formats::write_xdmf_sidecar(options.output);
+    if (report.projected_nodes > 0) {
+      log.info(std::to_string(report.projected_nodes) + " wall nodes off the walldisp curves (joins, lips, end "
+               "faces) took the displacement of the nearest curve point (at most " + num(report.largest_projection) + " m away)");
+    }
     log.info("quality after deformation: " + quality_text(report.quality));
     log.summary("wrote " + options.output.string() + ": " + std::to_string(report.moved_wall_nodes) +
                 " boundary nodes displaced, every cell valid (" + num(clock.seconds(), 3) + " s)");
