@@ -74,3 +74,18 @@ TEST(Model, SimpleNozzleDomainIsAClosedCounterClockwiseLoop) {
     for (const auto& p : f.inner_wall) EXPECT_NEAR(distance_to(f.reference_geometry, p), 0.5 * f.thickness, 1e-6);
   }
 }
+
+TEST(Geometry, GeoFileCurvesAreNamedByTheirPhysicalGroup) {
+  const auto dir = tfmb::test::scratch_dir("input-geo");
+  tfmb::test::write_text(dir / "two.geo",
+                         "Point(1) = {0, 0.5, 0};\nPoint(2) = {1, 0.5, 0};\nPoint(3) = {2, 0.6, 0};\n"
+                         "Line(1) = {1, 2};\nLine(2) = {2, 3};\n"
+                         "Physical Curve(\"first\") = {1};\nPhysical Curve(\"second\") = {2};\n");
+  const auto curves = read_geometry(dir / "two.geo", 0.5, 16);
+  ASSERT_EQ(curves.size(), 2u);
+  EXPECT_EQ(curves[0].name, "first");
+  EXPECT_EQ(curves[1].name, "second");
+  ASSERT_EQ(curves[0].points.size(), 2u);  // straight lines are not oversampled
+  EXPECT_NEAR(curves[1].points.back().x(), 1.0, 1e-12);  // scale 0.5 applied
+  EXPECT_NEAR(curves[1].points.back().y(), 0.3, 1e-12);
+}
