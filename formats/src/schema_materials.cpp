@@ -36,7 +36,7 @@ Schema materials_schema() {
       {"yield_strength", "Pa", "at the element temperature (absent if the database has none)", false},
       {"ultimate_strength", "Pa", "at the element temperature (absent if the database has none)", false},
       {"allowable_strain", "1", "see allowable_strain_basis", true},
-      {"thermal_strain", "1", "free thermal strain at the mean temperature, from stress_free_temperature", true},
+      {"thermal_strain", "1", "axial thermal strain of the section: thickness mean of the free thermal strain", true},
       {"thermal_strain_inner", "1", "free thermal strain at the inner surface temperature", true},
       {"thermal_strain_outer", "1", "free thermal strain at the outer surface temperature", true},
       {"thermal_curvature", "1/m",

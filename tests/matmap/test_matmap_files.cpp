@@ -159,7 +159,12 @@ TEST(Matmap, ThermalCurvatureFromTheSurfaceStrains) {
   const double tref = db.find("Ti-6Al-4V")->reference_temperature;
   const auto& e = r.flaps[0].elements;
   for (std::size_t k = 0; k < 2; ++k) {
-    auto eps = [&](double t) { return evaluate(alpha, t, false).value * (t - tref); };
+    // Free strain from the model's stress-free temperature (293.15 K, test_files.hpp).
+    const double t0 = r.flaps[0].stress_free_temperature;
+    EXPECT_EQ(t0, 293.15);
+    auto eps = [&](double t) {
+      return evaluate(alpha, t, false).value * (t - tref) - evaluate(alpha, t0, false).value * (t0 - tref);
+    };
     const double t = e.temperature[k], dt = e.delta_temperature[k];
     EXPECT_NEAR(e.thermal_curvature[k], (eps(t + dt / 2) - eps(t - dt / 2)) / 0.004, 1e-12);
     // Both surfaces lie in one table segment, where alpha_mean is linear and the strain
@@ -170,6 +175,12 @@ TEST(Matmap, ThermalCurvatureFromTheSurfaceStrains) {
     const double slope = (alpha.value[i] - alpha.value[i - 1]) / (alpha.temperature[i] - alpha.temperature[i - 1]);
     const double alpha_inst = evaluate(alpha, t, false).value + (t - tref) * slope;
     EXPECT_NEAR(e.thermal_curvature[k], alpha_inst * dt / 0.004, 1e-12);
+    // The section's axial thermal strain is the thickness mean of the free strain (midpoint
+    // rule with 2000 layers as the reference; its error is O(1e-7) of the quadratic term).
+    double mean = 0.0;
+    for (int layer = 0; layer < 2000; ++layer) mean += eps(t - dt / 2 + dt * (layer + 0.5) / 2000.0) / 2000.0;
+    EXPECT_NEAR(e.thermal_strain[k], mean, 1e-13);
+    EXPECT_GT(std::abs(e.thermal_strain[k] - eps(t)), 1e-9);  // the quadratic term is seen
   }
 }
 

@@ -52,6 +52,7 @@ Model read_model(const std::filesystem::path& file) {
     flap.thickness = reader.attr_f64(g, "thickness");
     flap.width = reader.attr_f64(g, "width");
     flap.reference_curve = read_points(reader, g + "/reference_curve");
+    if (reader.exists(g + "/reference_geometry")) flap.reference_geometry = read_points(reader, g + "/reference_geometry");
     flap.inner_wall = read_points(reader, g + "/inner_wall");
     flap.outer_wall = read_points(reader, g + "/outer_wall");
     if (flap.reference_curve.size() < 2) reader.fail(g + "/reference_curve", "fewer than two beam nodes");

@@ -22,6 +22,9 @@ struct ModelFlap {
   double thickness = 0.0;            // [m]
   double width = 0.0;                // [m]
   std::vector<Vec2> reference_curve; // beam nodes [m]
+  // The reference line at full geometric resolution (model 2.x); the beam nodes and any
+  // intermediate nodes of higher-order beam elements lie on it. Empty if the model has none.
+  std::vector<Vec2> reference_geometry;
   std::vector<Vec2> inner_wall;      // [m]
   std::vector<Vec2> outer_wall;      // [m]
 };

@@ -352,8 +352,12 @@ DisplaceResult run_displace_unchecked(const DisplaceOptions& options, const Logg
       const BeamLine reference = make_beam(flap, options.model_file);
       const double tolerance = options.match_tolerance * reference.length();
       const auto& points = it->second.points;
+      // Nodes of higher-order beam elements lie on the curve, not on the chords between the
+      // model's beam nodes: compare with the full-resolution reference line where there is one.
+      const std::vector<Vec2>& line = flap.reference_geometry.size() >= 2 ? flap.reference_geometry : flap.reference_curve;
       for (std::size_t k = 0; k < points.size(); ++k) {
-        const double distance = (points[k] - closest_point(flap.reference_curve, points[k])).norm();
+        const double distance = std::min((points[k] - closest_point(line, points[k])).norm(),
+                                         (points[k] - closest_point(flap.reference_curve, points[k])).norm());
         if (distance > tolerance) {
           throw BadInput(sfile + ": /flaps/" + flap.name + "/nodes: beam node " + std::to_string(k) + " at (" +
                          format_number(points[k].x()) + ", " + format_number(points[k].y()) + ") m lies " +

@@ -136,7 +136,7 @@ void write_materials(const std::filesystem::path& file, const formats::Header& h
       w.write(g + "/ultimate_strength", e.ultimate_strength, "Pa", "");
     }
     w.write(g + "/allowable_strain", e.allowable_strain, "1", f.allowable_strain_basis);
-    w.write(g + "/thermal_strain", e.thermal_strain, "1", "free thermal strain at the mean temperature");
+    w.write(g + "/thermal_strain", e.thermal_strain, "1", "section mean of the free thermal strain through the thickness");
     w.write(g + "/thermal_strain_inner", e.thermal_strain_inner, "1", "at the inner surface (T - dT/2)");
     w.write(g + "/thermal_strain_outer", e.thermal_strain_outer, "1", "at the outer surface (T + dT/2)");
     w.write(g + "/thermal_curvature", e.thermal_curvature, "1/m",

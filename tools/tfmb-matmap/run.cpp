@@ -144,7 +144,7 @@ Result run(const Options& options, const Logger& logger, std::ostream& out) {
       const double eps = thermal_strain(alpha, t, alpha0, t0, t_ref);
       const double eps_in = thermal_strain(alpha_in, t - 0.5 * dt, alpha0, t0, t_ref);
       const double eps_out = thermal_strain(alpha_out, t + 0.5 * dt, alpha0, t0, t_ref);
-      e.thermal_strain.push_back(eps);
+      e.thermal_strain.push_back(section_thermal_strain(eps_in, eps, eps_out));
       e.thermal_strain_inner.push_back(eps_in);
       e.thermal_strain_outer.push_back(eps_out);
       e.thermal_curvature.push_back(thermal_curvature(eps_out, eps_in, mf.thickness));
