@@ -250,3 +250,40 @@ TEST(Deform, FoldingDisplacementIsRefusedWithTheAdmissibleFraction) {
   EXPECT_NO_THROW(mesh::deform_mesh(m, scaled(0.99 * fraction), report));
   EXPECT_THROW(mesh::deform_mesh(m, scaled(std::min(1.0, 1.01 * fraction)), report), tfmb::BadInput);
 }
+
+TEST(Geometry, NparcChannelWallFollowsTheExactAreaLaw) {
+  // refdata/flow/nparc_cdv_nozzle_definition.csv: A(x) [in^2] = 1.75 - 0.75 cos((0.2x - 1) pi) for
+  // x < 5, 1.25 - 0.25 cos((0.2x - 1) pi) after; 2D: wall height = A per unit width. The case
+  // samples it at 201 points: linear interpolation error <= A'' dx^2 / 8 = 0.296 * 0.05^2 / 8
+  // = 9.3e-5 in.
+  const auto model = load_case("nparc-cdv");
+  mesh::FlowMeshReport report;
+  const auto m = mesh::build_flow_mesh(model, {}, report, quiet());
+  const auto& wall = m.boundaries.at("wall");
+  const double inch = 0.0254;
+  double worst = 0.0;
+  for (Eigen::Index e = 0; e < wall.edges.rows(); ++e) {
+    const double x = m.points(wall.edges(e, 0), 0) / inch, y = m.points(wall.edges(e, 0), 1) / inch;
+    const double area = x < 5.0 ? 1.75 - 0.75 * std::cos((0.2 * x - 1.0) * M_PI) : 1.25 - 0.25 * std::cos((0.2 * x - 1.0) * M_PI);
+    worst = std::max(worst, std::abs(y - area));
+  }
+  EXPECT_LT(worst, 1e-4);
+  EXPECT_EQ(m.quads.rows(), 120 * 30);
+}
+
+TEST(Geometry, NasaB1ThroatAndExitHeights) {
+  // refdata/flow/mason_tp1704_B1_geometry_sonicline.csv: h_t 1.37 cm, h_e 2.46 cm (half-heights),
+  // exit/throat 1.796. The model's inner walls (drawn as `reference = "inner"`, moved to the mid
+  // line and back) must reproduce them to the rounding of b1.csv (1e-8 m) plus the arc chord
+  // sag of the throat (r_c (1 - cos(0.87 deg)) = 7.8e-7 m).
+  const auto model = load_case("nasa-2dcd");
+  double throat = 1e300, exit_height = 0.0;
+  for (const auto& b : model.domain.boundaries) {
+    if (b.flap.rfind("upper", 0) != 0 || b.side != "inner") continue;
+    for (const auto& p : b.points) throat = std::min(throat, p.y());
+    if (b.flap == "upper_divergent") exit_height = b.points.front().y();  // loop runs exit -> throat
+  }
+  EXPECT_NEAR(throat, 0.0137, 1e-6);
+  EXPECT_NEAR(exit_height, 0.0246, 1e-7);
+  EXPECT_NEAR(exit_height / throat, 1.796, 1e-3);
+}
