@@ -2,14 +2,15 @@
 // The tfmb-heat stage: solidmesh.h5 + flow.h5 + model.h5 + material database -> thermal.h5.
 //
 // Boundary conditions come from model.h5 /thermal@solid_boundary:
-//   wall_temperature      solid_inner walls take the flow wall temperature (the seed's method)
-//   convection            solid_inner (and solid_outer walls with a flow trace) take
-//                         h and T_aw from the flow wall trace
+//   wall_temperature      walls with a flow trace take the flow wall temperature (the seed's
+//                         method)
+//   convection            walls with a flow trace take h and T_aw from it
 //   convection_radiation  as convection, plus radiation of every solid_outer wall
 //                         (model /thermal@emissivity) to the environment temperature
-// A solid wall is matched to the flow wall of the same flap and side. solid_inner walls need a
-// trace; solid_outer walls without one are adiabatic (plus radiation where asked); solid_end
-// walls are adiabatic, unless --joint-conductance h_c > 0: then, for every joint of model.h5,
+// A solid wall (solid_inner / solid_outer) is matched to the flow wall of the same flap and side
+// (/mesh/boundaries/*@flap, @side of both files). solid_inner walls need a trace; solid_outer
+// walls without one are adiabatic (plus radiation where asked); solid_end walls are adiabatic,
+// unless --joint-conductance h_c > 0: then, for every joint of model.h5,
 // the closest pair of solid_end walls of its two flaps exchanges heat h_c (T_a - T_b) (gap
 // conductance contact). Traces are moved onto the solid wall by projection (wall_mapping.hpp).
 #include "tfmb/heat/problem.hpp"
