@@ -465,7 +465,7 @@ void check_domain(const std::vector<DomainBoundary>& loop) {
 
 }  // namespace
 
-Domain build_domain(const Model& model, const std::vector<Curve>& curves, double) {
+Domain build_domain(const Model& model, const std::vector<Curve>& curves) {
   Domain domain;
   domain.settings = model.domain.settings;
   const std::string& kind = domain.settings.kind;
@@ -538,7 +538,7 @@ Model build_model(const CaseSpec& spec, const std::vector<Curve>& curves, const 
     model.supports.push_back(support);
   }
   check_overlaps(model, tol);
-  model.domain = build_domain(model, curves, tol);
+  model.domain = build_domain(model, curves);
   if (model.flow.yplus_target > 0.0) {
     model.flow.first_cell_height = first_cell_height_for_yplus(model.flow, model.flow.yplus_target);
   }
@@ -562,9 +562,6 @@ void run(const Options& options, const Logger& log) {
     if (!options.curves_csv.empty()) write_curves_csv(curves, options.curves_csv);
   } else if (!spec.flaps.empty() || spec.settings.domain.settings.kind == "channel") {
     throw BadInput(options.case_file.string() + ": flaps need a [geometry] table with a file");
-  }
-  if (spec.settings.flow.reference_length <= 0.0) {
-    // leave as given: the y+ estimate falls back to 0.1 m (see case_file.cpp)
   }
   const Model model = build_model(spec, curves, log);
   formats::Provenance provenance;

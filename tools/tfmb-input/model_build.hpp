@@ -21,7 +21,7 @@ Section rectangle_section(double thickness, double width, double youngs_modulus,
 Model build_model(const CaseSpec& spec, const std::vector<Curve>& curves, const Logger& log);
 
 // The flow domain loop of a model whose flaps are built (also used by tests).
-Domain build_domain(const Model& model, const std::vector<Curve>& curves, double tolerance);
+Domain build_domain(const Model& model, const std::vector<Curve>& curves);
 
 struct Options {
   std::filesystem::path case_file;
