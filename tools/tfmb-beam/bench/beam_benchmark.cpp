@@ -113,7 +113,7 @@ int main(int argc, char** argv) {
               ours.converged ? "" : "  NOT CONVERGED");
   if (on_path("ccx") && std::filesystem::exists(ccx_input)) {
     double s = 0.0;
-    Eigen::Vector3d u;
+    Eigen::Vector3d u = Eigen::Vector3d::Zero();
     if (run_calculix(ccx_input, s, u)) {
       const Eigen::Vector3d tip0(100.0 - 100.0 / std::sqrt(2.0), 100.0 / std::sqrt(2.0), 0.0);
       const Eigen::Vector3d tip = tip0 + u;

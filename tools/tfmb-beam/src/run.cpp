@@ -1,0 +1,372 @@
+#include "tfmb/beam/run.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "tfmb/beam/assembly.hpp"
+#include "tfmb/beam/dynamic_solver.hpp"
+#include "tfmb/beam/errors.hpp"
+#include "tfmb/beam/modal.hpp"
+#include "tfmb/beam/rotation_wm.hpp"
+#include "tfmb/beam/static_solver.hpp"
+#include "tfmb/common/errors.hpp"
+#include "tfmb/common/h5.hpp"
+#include "tfmb/formats/files.hpp"
+#include "tfmb/formats/schema.hpp"
+
+namespace tfmb::beam {
+namespace {
+
+Eigen::Matrix<double, 6, 6> read_6x6(const h5::Reader& f, const std::string& path) {
+  const h5::MatrixXdR m = f.read_matrix(path, 6, 6);
+  return m;
+}
+
+int end_node(const FileModel& fm, const h5::Reader& f, const std::string& flap, const std::string& end,
+             const std::string& where) {
+  const auto it = fm.flap_nodes.find(flap);
+  if (it == fm.flap_nodes.end()) f.fail(where, "refers to flap '" + flap + "', which is not in /flaps");
+  return end == "start" ? it->second.front() : it->second.back();
+}
+
+}  // namespace
+
+FileModel read_model(const Options& options) {
+  FileModel fm;
+  Model& m = fm.model;
+  const h5::Reader f = formats::open_checked(options.model, "model");
+  const formats::Header header = formats::read_header(f);
+  if (header.geometry != "planar")
+    f.fail("/", "geometry '" + header.geometry + "': tfmb-beam supports planar models only");
+  std::vector<std::pair<std::int64_t, std::string>> order;
+  for (const auto& name : f.children("/flaps")) order.push_back({f.attr_i64("/flaps/" + name, "order"), name});
+  std::sort(order.begin(), order.end());
+  for (const auto& [o, name] : order) {
+    (void)o;
+    const std::string g = "/flaps/" + name;
+    fm.flap_names.push_back(name);
+    const h5::MatrixXdR curve = f.read_matrix(g + "/reference_curve", {}, 2);
+    if (curve.rows() < 2) f.fail(g + "/reference_curve", "needs at least 2 points");
+    Section sec;
+    sec.stiffness = read_6x6(f, g + "/section_stiffness");
+    const Eigen::Matrix<double, 6, 6> mass = read_6x6(f, g + "/section_mass");
+    sec.mass_per_length = mass(0, 0);
+    sec.inertia_per_length = mass.block<3, 3>(3, 3);
+    for (int i = 0; i < 6; ++i)
+      if (!(sec.stiffness(i, i) > 0.0)) f.fail(g + "/section_stiffness", "diagonal entry " + std::to_string(i) + " must be > 0");
+    const int section = static_cast<int>(m.sections.size());
+    m.sections.push_back(sec);
+    // Each two-node element of the model becomes one quadratic element with a mid-node.
+    std::vector<int>& nodes = fm.flap_nodes[name];
+    auto add_node = [&](const Eigen::Vector2d& p, const Eigen::Vector2d& t) {
+      Node n;
+      n.position = Eigen::Vector3d(p.x(), p.y(), 0.0);
+      const Eigen::Vector3d e1 = Eigen::Vector3d(t.x(), t.y(), 0.0).normalized();
+      n.frame.col(0) = e1;
+      n.frame.col(1) = Eigen::Vector3d::UnitZ().cross(e1);
+      n.frame.col(2) = Eigen::Vector3d::UnitZ();
+      nodes.push_back(static_cast<int>(m.nodes.size()));
+      m.nodes.push_back(n);
+    };
+    const Eigen::Index nr = curve.rows();
+    for (Eigen::Index i = 0; i < nr; ++i) {
+      const Eigen::Vector2d p = curve.row(i).transpose();
+      // Node tangent: average of the adjacent segment directions (the exact arc tangent is not
+      // known from the polyline).
+      Eigen::Vector2d t = Eigen::Vector2d::Zero();
+      if (i > 0) t += (curve.row(i) - curve.row(i - 1)).transpose().normalized();
+      if (i + 1 < nr) t += (curve.row(i + 1) - curve.row(i)).transpose().normalized();
+      if (t.norm() < 1e-12) f.fail(g + "/reference_curve", "repeated or reversing points at row " + std::to_string(i));
+      if (i > 0) {
+        const Eigen::Vector2d a = curve.row(i - 1).transpose();
+        add_node(0.5 * (a + p), p - a);
+      }
+      add_node(p, t);
+    }
+    for (Eigen::Index e = 0; e + 1 < nr; ++e) {
+      Element el;
+      el.nodes = {nodes[2 * e], nodes[2 * e + 1], nodes[2 * e + 2]};
+      el.section = section;
+      fm.flap_elements[name].push_back(static_cast<int>(m.elements.size()));
+      m.elements.push_back(el);
+    }
+  }
+  // Supports and joints.
+  if (f.exists("/supports"))
+    for (const auto& name : f.children("/supports")) {
+      const std::string g = "/supports/" + name;
+      JointSpec j;
+      j.name = name;
+      j.node_b = end_node(fm, f, f.attr_string(g, "flap"), f.attr_string(g, "end"), g);
+      const std::string kind = f.attr_string(g, "kind");
+      j.kind = kind == "clamp" ? JointKind::clamp : JointKind::revolute;
+      j.node_a = -1;
+      m.joints.push_back(j);
+      fm.joint_names.push_back(name);
+    }
+  if (f.exists("/joints"))
+    for (const auto& name : f.children("/joints")) {
+      const std::string g = "/joints/" + name;
+      const std::string kind = f.attr_string(g, "kind");
+      JointSpec j;
+      j.name = name;
+      j.node_a = end_node(fm, f, f.attr_string(g, "flap_a"), f.attr_string(g, "end_a"), g);
+      j.node_b = end_node(fm, f, f.attr_string(g, "flap_b"), f.attr_string(g, "end_b"), g);
+      auto opt = [&](const char* a) { return f.has_attr(g, a) ? f.attr_f64(g, a) : 0.0; };
+      if (kind == "rigid") {
+        j.kind = JointKind::rigid;
+      } else if (kind == "revolute" || kind == "revolute_spring") {
+        j.kind = JointKind::revolute;
+        j.spring_stiffness = opt("stiffness");
+        j.damping = opt("damping");
+      } else if (kind == "prescribed_rotation") {
+        j.kind = JointKind::revolute;
+        j.prescribed = true;
+        if (!f.exists(g + "/rotation_table")) f.fail(g, "prescribed_rotation needs /rotation_table");
+        const h5::MatrixXdR t = f.read_matrix(g + "/rotation_table", {}, 2);
+        for (Eigen::Index r = 0; r < t.rows(); ++r) j.prescribed_table.push_back({t(r, 0), t(r, 1)});
+      } else if (kind == "revolute_clearance") {
+        j.kind = JointKind::clearance;
+        j.pin_radius = opt("inner_radius");
+        j.hole_radius = opt("outer_radius");
+        j.contact_stiffness = opt("contact_stiffness");
+        j.friction_coefficient = opt("friction");
+      } else {
+        f.fail(g, "joint kind '" + kind + "' is not supported by this tfmb-beam version (flexible joints: issue 7)");
+      }
+      // Coincident flap ends are required by the hinge joints.
+      if (j.kind != JointKind::rigid &&
+          (m.nodes[j.node_a].position - m.nodes[j.node_b].position).norm() > 1e-9 * (1.0 + m.nodes[j.node_a].position.norm()))
+        f.fail(g, "the flap ends it joins are not at the same point");
+      m.joints.push_back(j);
+      fm.joint_names.push_back(name);
+    }
+  add_planar_constraints(m);
+  fm.joint_names.resize(m.joints.size());
+
+  // Loads: distributed force per unit length at the flap nodes, linear between them; the
+  // element average goes on each quadratic element (exact resultant).
+  if (!options.loads.empty()) {
+    const h5::Reader l = formats::open_checked(options.loads, "loads");
+    for (const auto& name : l.children("/flaps")) {
+      const std::string g = "/flaps/" + name;
+      if (!fm.flap_elements.count(name)) l.fail(g, "flap '" + name + "' is not in the model " + options.model.string());
+      const auto& els = fm.flap_elements[name];
+      const h5::MatrixXdR q = l.read_matrix(g + "/distributed_force", static_cast<Eigen::Index>(els.size() + 1), 3);
+      for (size_t e = 0; e < els.size(); ++e) {
+        DistributedLoad d;
+        d.element = els[e];
+        const Eigen::Vector3d avg = 0.5 * (q.row(e) + q.row(e + 1)).transpose();
+        d.follower = !options.dead_loads;
+        // Follower loads are given in the section frame of the reference configuration.
+        d.force_per_length = d.follower ? Eigen::Vector3d(m.nodes[m.elements[els[e]].nodes[1]].frame.transpose() * avg) : avg;
+        m.distributed_loads.push_back(d);
+      }
+    }
+  }
+  // Materials: temperature-dependent stiffness (scaled from the model's room-temperature
+  // section) and thermal strain and curvature per element.
+  if (!options.materials.empty()) {
+    const h5::Reader mt = formats::open_checked(options.materials, "materials");
+    for (const auto& name : mt.children("/flaps")) {
+      const std::string g = "/flaps/" + name;
+      if (!fm.flap_elements.count(name)) mt.fail(g, "flap '" + name + "' is not in the model " + options.model.string());
+      const auto& els = fm.flap_elements[name];
+      const size_t ne = els.size();
+      const auto eps = mt.read_vector(g + "/thermal_strain", ne);
+      const auto eps_in = mt.read_vector(g + "/thermal_strain_inner", ne);
+      const auto eps_out = mt.read_vector(g + "/thermal_strain_outer", ne);
+      const auto youngs = mt.read_vector(g + "/youngs_modulus", ne);
+      const auto shear = mt.read_vector(g + "/shear_modulus", ne);
+      const double t = mt.attr_f64(g, "thickness");
+      const std::string mg = "/flaps/" + name;
+      const double e0 = f.has_attr(mg, "youngs_modulus") ? f.attr_f64(mg, "youngs_modulus") : 0.0;
+      const double nu0 = f.has_attr(mg, "poisson_ratio") ? f.attr_f64(mg, "poisson_ratio") : 0.3;
+      // Which side of e2 is the inner wall: compare the model's inner wall with the reference line.
+      const h5::MatrixXdR inner = f.read_matrix(mg + "/inner_wall", {}, 2);
+      const h5::MatrixXdR refg = f.read_matrix(mg + "/reference_geometry", {}, 2);
+      const Eigen::Vector3d off(inner(0, 0) - refg(0, 0), inner(0, 1) - refg(0, 1), 0.0);
+      const double inner_sign = off.dot(m.nodes[fm.flap_nodes[name].front()].frame.col(1)) >= 0.0 ? 1.0 : -1.0;
+      for (size_t e = 0; e < ne; ++e) {
+        Element& el = m.elements[els[e]];
+        // Free strain across the thickness: eps(y2) linear; bending strain is -k3 y2.
+        const double eps_plus = inner_sign > 0 ? eps_in[e] : eps_out[e];
+        const double eps_minus = inner_sign > 0 ? eps_out[e] : eps_in[e];
+        el.initial_strain.setZero();
+        el.initial_strain(0) = eps[e];
+        if (t > 0.0) el.initial_strain(5) = -(eps_plus - eps_minus) / t;
+        if (e0 > 0.0) {
+          const double g0 = e0 / (2.0 * (1.0 + nu0));
+          Section s = m.sections[el.section];
+          const double fe = youngs[e] / e0, fg = shear[e] / g0;
+          for (int i : {0, 4, 5}) s.stiffness.row(i) *= std::sqrt(fe), s.stiffness.col(i) *= std::sqrt(fe);
+          for (int i : {1, 2, 3}) s.stiffness.row(i) *= std::sqrt(fg), s.stiffness.col(i) *= std::sqrt(fg);
+          el.section = static_cast<int>(m.sections.size());
+          m.sections.push_back(s);
+        }
+      }
+    }
+  }
+  return fm;
+}
+
+namespace {
+
+void write_structure(const Options& options, const FileModel& fm, const Assembly& asmb, const State& state,
+                     const std::string& analysis, bool converged, const std::vector<double>& times,
+                     const std::vector<std::vector<Eigen::Vector3d>>& history, const Eigen::VectorXd* frequencies) {
+  const Model& m = fm.model;
+  h5::Writer w(options.output);
+  formats::Header header;
+  header.creator = "tfmb-beam " TFMB_BEAM_VERSION;
+  formats::write_header(w, "structure", header);
+  w.set_attr("/", "analysis", analysis);
+  w.set_attr("/", "converged", static_cast<std::int64_t>(converged ? 1 : 0));
+  const Eigen::Index n = static_cast<Eigen::Index>(m.nodes.size());
+  h5::MatrixXdR pts(n, 3), disp(n, 3), rot(n, 3);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    pts.row(i) = m.nodes[i].position.transpose();
+    disp.row(i) = (state.position[i] - m.nodes[i].position).transpose();
+    rot.row(i) = state.rotation[i].transpose();
+  }
+  w.write("/beam/points", pts, "m", "beam node reference positions");
+  const Eigen::Index ns = 2 * static_cast<Eigen::Index>(m.elements.size());
+  h5::MatrixXiR seg(ns, 2);
+  h5::MatrixXdR strain(ns, 6), force(ns, 6);
+  std::vector<ElementResult> er;
+  asmb.element_results(state, er);
+  for (size_t e = 0; e < m.elements.size(); ++e)
+    for (int s = 0; s < 2; ++s) {
+      const Eigen::Index r = 2 * static_cast<Eigen::Index>(e) + s;
+      seg(r, 0) = m.elements[e].nodes[s];
+      seg(r, 1) = m.elements[e].nodes[s + 1];
+      strain.row(r) = er[e].strain[s].transpose();
+      force.row(r) = er[e].stress[s].transpose();
+    }
+  w.write("/beam/segments", seg, "1", "display segments (two per quadratic element)");
+  w.write("/fields/point/displacement", disp, "m");
+  w.write("/fields/point/rotation", rot, "1", "Wiener-Milenkovic rotation parameters");
+  w.write("/fields/cell/sectional_strain", strain, "1, 1/m",
+          "per segment (Gauss point of the element half): axial, 2 shear, torsion, 2 curvatures");
+  w.write("/fields/cell/sectional_force", force, "N, N m", "axial, 2 shear forces, torsion, 2 bending moments");
+  for (const auto& name : fm.flap_names) {
+    std::vector<std::int64_t> nodes(fm.flap_nodes.at(name).begin(), fm.flap_nodes.at(name).end());
+    std::vector<std::int64_t> segs;
+    for (int e : fm.flap_elements.at(name)) {
+      segs.push_back(2 * e);
+      segs.push_back(2 * e + 1);
+    }
+    w.write("/flaps/" + name + "/nodes", nodes);
+    w.write("/flaps/" + name + "/segments", segs);
+  }
+  for (size_t j = 0; j < m.joints.size(); ++j) {
+    if (m.joints[j].kind == JointKind::planar) continue;
+    const std::string g = "/joints/" + fm.joint_names[j];
+    const auto outs = asmb.joint_outputs(state, static_cast<int>(j));
+    std::vector<double> reaction(6, 0.0);
+    auto get = [&](const std::string& key, double& v) {
+      for (const auto& o : outs)
+        if (o.name == key) {
+          v = o.value;
+          return true;
+        }
+      return false;
+    };
+    const char* keys[] = {"reaction_force_x", "reaction_force_y", "reaction_force_z",
+                          "reaction_moment_x", "reaction_moment_y", "reaction_moment_z"};
+    for (int k = 0; k < 6; ++k) get(keys[k], reaction[k]);
+    w.write(g + "/reaction", reaction, "N, N m", "force and moment on the structure from the joint");
+    double v = 0.0;
+    if (get("relative_rotation", v)) w.write(g + "/relative_rotation", std::vector<double>{v}, "rad");
+    if (get("contact_force", v)) w.write(g + "/contact_force", std::vector<double>{v}, "N");
+    if (get("gap", v)) w.write(g + "/gap", std::vector<double>{v}, "m");
+  }
+  if (!times.empty()) {
+    w.write("/history/time", times, "s");
+    std::vector<double> flat;
+    for (const auto& snap : history)
+      for (Eigen::Index i = 0; i < n; ++i)
+        for (int c = 0; c < 3; ++c) flat.push_back(snap[i](c) - m.nodes[i].position(c));
+    w.write_array("/history/displacement", flat, {times.size(), static_cast<size_t>(n), 3}, "m");
+  }
+  if (frequencies) {
+    std::vector<double> fr(frequencies->data(), frequencies->data() + frequencies->size());
+    w.write("/modes/frequency", fr, "Hz", "natural frequencies about the reference state");
+  }
+  formats::Provenance prov;
+  prov.command_line = options.command_line;
+  std::ostringstream settings;
+  settings << "analysis = \"" << analysis << "\"\nrho_infinity = " << options.rho_infinity
+           << "\ndead_loads = " << (options.dead_loads ? "true" : "false") << "\n";
+  prov.settings = settings.str();
+  prov.inputs.push_back(options.model);
+  if (!options.loads.empty()) prov.inputs.push_back(options.loads);
+  if (!options.materials.empty()) prov.inputs.push_back(options.materials);
+  formats::write_provenance(w, prov);
+  w.commit();
+}
+
+}  // namespace
+
+int run(const Options& options, const Logger& log) {
+  const auto t0 = std::chrono::steady_clock::now();
+  FileModel fm = read_model(options);
+  const h5::Reader mf = formats::open_checked(options.model, "model");
+  std::string analysis = options.analysis.empty() ? mf.attr_string("/analysis", "time") : options.analysis;
+  if (analysis != "static" && analysis != "dynamic" && analysis != "modal")
+    throw UsageError("--analysis must be static, dynamic or modal, got '" + analysis + "'");
+  std::unique_ptr<Assembly> asmb;
+  try {
+    asmb = std::make_unique<Assembly>(fm.model);
+  } catch (const ModelError& e) {
+    throw BadInput(options.model.string() + ": " + e.what());
+  }
+  log.info("model: " + std::to_string(fm.model.nodes.size()) + " nodes, " + std::to_string(fm.model.elements.size()) +
+           " quadratic elements, " + std::to_string(asmb->num_multipliers()) + " constraint equations");
+  std::vector<double> times;
+  std::vector<std::vector<Eigen::Vector3d>> history;
+  try {
+    if (analysis == "static") {
+      StaticOptions so;
+      so.initial_steps = options.load_steps > 0 ? options.load_steps
+                                                : static_cast<int>(mf.attr_i64("/analysis", "load_steps"));
+      const StaticResult r = solve_static(*asmb, asmb->initial_state(), so);
+      write_structure(options, fm, *asmb, r.state, analysis, r.converged, times, history, nullptr);
+      log.summary("static: " + std::string(r.converged ? "converged" : "NOT converged") + " at load factor " +
+                  std::to_string(r.load_factor) + ", " + std::to_string(r.steps) + " steps, " +
+                  std::to_string(r.iterations) + " Newton iterations");
+      if (!r.converged)
+        throw NotConverged("Newton failed at load factor " + std::to_string(r.load_factor) +
+                           " after cut-backs; the last converged state was written to " + options.output.string());
+    } else if (analysis == "dynamic") {
+      DynamicOptions dopt;
+      dopt.end_time = options.end_time > 0 ? options.end_time : mf.attr_f64("/analysis", "end_time");
+      dopt.time_step = options.time_step > 0 ? options.time_step : mf.attr_f64("/analysis", "time_step");
+      dopt.rho_infinity = options.rho_infinity;
+      dopt.on_step = [&](double t, const State& s) {
+        times.push_back(t);
+        history.push_back(s.position);
+      };
+      DynamicSolver solver(*asmb, dopt);
+      const DynamicResult r = solver.run(asmb->initial_state());
+      write_structure(options, fm, *asmb, r.state, analysis, r.completed, times, history, nullptr);
+      log.summary("dynamic: " + std::to_string(r.steps) + " steps to t = " + std::to_string(r.time) + " s" +
+                  (r.completed ? "" : " (NOT completed)"));
+      if (!r.completed) throw NotConverged("Newton failed at t = " + std::to_string(r.time) + " s");
+    } else {
+      const ModalResult r = modal_analysis(*asmb, asmb->initial_state(), options.modes);
+      write_structure(options, fm, *asmb, asmb->initial_state(), analysis, true, times, history, &r.frequencies_hz);
+      std::ostringstream s;
+      s << "modal: first frequencies [Hz]:";
+      for (Eigen::Index i = 0; i < r.frequencies_hz.size(); ++i) s << " " << r.frequencies_hz(i);
+      log.summary(s.str());
+    }
+  } catch (const ModelError& e) {
+    throw BadInput(options.model.string() + ": " + e.what());
+  }
+  log.verbose("time " + std::to_string(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()) + " s");
+  return 0;
+}
+
+}  // namespace tfmb::beam
