@@ -7,7 +7,7 @@
 #include <sstream>
 #include <Eigen/Geometry>
 
-#include "run.hpp"
+#include "tfmb-loads/run.hpp"
 #include "test_files.hpp"
 #include "tfmb/common/errors.hpp"
 #include "tfmb/formats/schema.hpp"

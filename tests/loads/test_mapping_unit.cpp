@@ -4,10 +4,10 @@
 #include <cmath>
 #include <numbers>
 
-#include "beam_line.hpp"
-#include "displace.hpp"
-#include "expression.hpp"
-#include "trace.hpp"
+#include "tfmb-loads/beam_line.hpp"
+#include "tfmb-loads/displace.hpp"
+#include "tfmb-loads/expression.hpp"
+#include "tfmb-loads/trace.hpp"
 
 using namespace tfmb::loads;
 

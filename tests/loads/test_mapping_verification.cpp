@@ -7,8 +7,8 @@
 #include <cstdio>
 #include <Eigen/Geometry>
 
-#include "displace.hpp"
-#include "mapping.hpp"
+#include "tfmb-loads/displace.hpp"
+#include "tfmb-loads/mapping.hpp"
 
 using namespace tfmb::loads;
 

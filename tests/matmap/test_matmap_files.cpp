@@ -6,8 +6,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "io.hpp"
-#include "run.hpp"
+#include "tfmb-matmap/io.hpp"
+#include "tfmb-matmap/run.hpp"
 #include "test_files.hpp"
 #include "tfmb/common/errors.hpp"
 #include "tfmb/formats/schema.hpp"

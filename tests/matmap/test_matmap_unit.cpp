@@ -3,9 +3,9 @@
 
 #include <cmath>
 
-#include "material_table.hpp"
-#include "section.hpp"
-#include "thermal_strain.hpp"
+#include "tfmb-matmap/material_table.hpp"
+#include "tfmb-matmap/section.hpp"
+#include "tfmb-matmap/thermal_strain.hpp"
 
 using namespace tfmb::matmap;
 

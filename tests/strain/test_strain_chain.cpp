@@ -13,11 +13,9 @@
 #include <algorithm>
 #include <sstream>
 
-// Both tools have a flat run.hpp: include each through its folder (quoted includes inside
-// them resolve next to the including file).
-#include "../../tools/tfmb-matmap/material_table.hpp"
-#include "../../tools/tfmb-matmap/run.hpp"
-#include "../../tools/tfmb-strain/run.hpp"
+#include "tfmb-matmap/material_table.hpp"
+#include "tfmb-matmap/run.hpp"
+#include "tfmb-strain/run.hpp"
 #include "test_files.hpp"
 
 namespace tf = tfmb::testfiles;

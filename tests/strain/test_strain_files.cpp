@@ -6,7 +6,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "run.hpp"
+#include "tfmb-strain/run.hpp"
 #include "test_files.hpp"
 #include "tfmb/common/errors.hpp"
 #include "tfmb/formats/schema.hpp"

@@ -1,7 +1,7 @@
 // Unit tests of the fibre strain and margin formulas.
 #include <gtest/gtest.h>
 
-#include "fibre_strain.hpp"
+#include "tfmb-strain/fibre_strain.hpp"
 
 using namespace tfmb::strain;
 
