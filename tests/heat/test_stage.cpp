@@ -182,7 +182,7 @@ void write_flow(const Case& c) {
 void write_model(const Case& c) {
   auto doc = example("model");
   rename_prefix(doc, "/flaps/sample", "/flaps/f0");
-  doc.attributes["/flaps/f0"]["material"] = text("alloy");
+  doc.attributes["/flaps/f0"]["material"] = text("Ti-Test");  // an alias, other case
   doc.attributes["/flaps/f0"]["elements"] = integer(kElements);
   doc.attributes["/thermal"]["solid_boundary"] = text(c.solid_boundary);
   doc.attributes["/thermal"]["emissivity"] = number(kEmissivity);
@@ -192,6 +192,7 @@ void write_model(const Case& c) {
 void write_db(const Case& c) {
   auto doc = example("material-db");
   rename_prefix(doc, "/materials/sample", "/materials/alloy");
+  doc.attributes["/materials/alloy"]["aliases"] = text("other,ti-test");
   const std::string p = "/materials/alloy/sample";
   const std::size_t n = c.k_temperatures.size();
   for (const char* ds : {"/point_exactness", "/point_source"}) {

@@ -12,6 +12,7 @@
 #include "tfmb/heat/wall_mapping.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -53,6 +54,40 @@ PropertyTable read_property(const h5::Reader& db, const std::string& material,
   } catch (const std::invalid_argument& error) {
     db.fail(group, error.what());
   }
+}
+
+// Steady runs need only the conductivity; density and specific heat are read when present.
+PropertyTable read_optional_property(const h5::Reader& db, const std::string& material,
+                                     const std::string& property) {
+  if (!db.exists("/materials/" + material + "/" + property)) return {};
+  return read_property(db, material, property);
+}
+
+std::string lower_trimmed(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (!std::isspace(static_cast<unsigned char>(c))) out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  }
+  return out;
+}
+
+// The database group of a material named in the model: its own name or one of its aliases,
+// matched without case (as tfmb-matmap does). Empty if none.
+std::string resolve_material(const h5::Reader& db, const std::string& name) {
+  const std::string key = lower_trimmed(name);
+  const auto materials = db.children("/materials");
+  for (const auto& m : materials) {
+    if (lower_trimmed(m) == key) return m;
+  }
+  for (const auto& m : materials) {
+    const std::string group = "/materials/" + m;
+    if (!db.has_attr(group, "aliases")) continue;
+    std::stringstream aliases(db.attr_string(group, "aliases"));
+    for (std::string alias; std::getline(aliases, alias, ',');) {
+      if (lower_trimmed(alias) == key) return m;
+    }
+  }
+  return {};
 }
 
 struct FlowWall {
@@ -101,16 +136,18 @@ int run(const Options& options, const Logger& log) {
     if (!model.exists(flap_group)) {
       model.fail(flap_group, "missing: the solid mesh has flap '" + flap_names[f] + "' but the model does not");
     }
-    const std::string material = model.attr_string(flap_group, "material");
+    const std::string named = model.attr_string(flap_group, "material");
     flap_elements[f] = model.attr_i64(flap_group, "elements");
+    const std::string material = resolve_material(db, named);
+    if (material.empty()) {
+      db.fail("/materials", "no material or alias '" + named + "' (flap '" + flap_names[f] + "' of " +
+                                options.model.string() + ")");
+    }
     if (!material_index.count(material)) {
-      if (!db.exists("/materials/" + material)) {
-        db.fail("/materials/" + material, "missing: flap '" + flap_names[f] + "' uses material '" + material + "'");
-      }
       material_index[material] = static_cast<int>(problem.materials.size());
       problem.materials.push_back({material, read_property(db, material, "conductivity"),
-                                   read_property(db, material, "density"),
-                                   read_property(db, material, "specific_heat")});
+                                   read_optional_property(db, material, "density"),
+                                   read_optional_property(db, material, "specific_heat")});
       try {
         validate_material(problem.materials.back(), false);
       } catch (const std::invalid_argument& error) {
