@@ -94,7 +94,10 @@ struct Case {
   std::vector<double> k_temperatures = {200.0, 2000.0};
   bool with_h_trace = true;
   std::string solid_boundary = "convection_radiation";
+  bool two_flaps = false;  // f1 beyond a 0.5 mm gap after f0, joined by a joint in the model
 };
+
+constexpr double kGap = 0.0005;  // [m] between the flaps of the two-flap case
 
 void write_solid(const Case& c) {
   heat::StripMeshOptions o;
@@ -103,35 +106,49 @@ void write_solid(const Case& c) {
   o.cells_along = 16;
   o.cells_through = 4;
   const auto strip = heat::make_strip_mesh(o);
-  formats::Mesh mesh;
-  mesh.points = strip.points;
+  const int flaps = c.two_flaps ? 2 : 1;
+  const auto n = strip.points.rows();
   const auto& quads = strip.blocks.at(0).nodes;
-  mesh.quads = h5::MatrixXiR::Map(quads.data(), static_cast<Eigen::Index>(quads.size() / 4), 4);
+  const auto nq = static_cast<Eigen::Index>(quads.size() / 4);
+  formats::Mesh mesh;
+  mesh.points.resize(n * flaps, 2);
+  mesh.quads.resize(nq * flaps, 4);
   mesh.triangles.resize(0, 3);
-  auto boundary = [&](const char* name, const char* kind, const char* side) {
-    formats::Boundary b;
-    const auto& nodes = strip.boundaries.at(name).nodes;
-    b.edges = h5::MatrixXiR::Map(nodes.data(), static_cast<Eigen::Index>(nodes.size() / 2), 2);
-    b.kind = kind;
-    b.flap = "f0";
-    b.side = side;
-    return b;
-  };
-  mesh.boundaries["f0_inner"] = boundary("bottom", "solid_inner", "inner");
-  mesh.boundaries["f0_outer"] = boundary("top", "solid_outer", "outer");
-  mesh.boundaries["f0_start"] = boundary("left", "solid_end", "end");
-  mesh.boundaries["f0_end"] = boundary("right", "solid_end", "end");
+  std::vector<std::int64_t> cell_flap, cell_element;
+  for (int f = 0; f < flaps; ++f) {
+    const double shift = f * (kLength + kGap);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      mesh.points(f * n + i, 0) = strip.points(i, 0) + shift;
+      mesh.points(f * n + i, 1) = strip.points(i, 1);
+    }
+    for (Eigen::Index q = 0; q < nq; ++q) {
+      double xc = 0;
+      for (int a = 0; a < 4; ++a) {
+        mesh.quads(f * nq + q, a) = quads[static_cast<std::size_t>(4 * q + a)] + f * n;
+        xc += 0.25 * strip.points(quads[static_cast<std::size_t>(4 * q + a)], 0);
+      }
+      cell_flap.push_back(f);
+      cell_element.push_back(static_cast<std::int64_t>(xc / (kLength / kElements)));
+    }
+    const std::string flap = "f" + std::to_string(f);
+    auto boundary = [&](const char* name, const char* kind, const char* side) {
+      formats::Boundary b;
+      const auto& nodes = strip.boundaries.at(name).nodes;
+      b.edges = h5::MatrixXiR::Map(nodes.data(), static_cast<Eigen::Index>(nodes.size() / 2), 2).array() + f * n;
+      b.kind = kind;
+      b.flap = flap;
+      b.side = side;
+      return b;
+    };
+    mesh.boundaries[flap + "_inner"] = boundary("bottom", "solid_inner", "inner");
+    mesh.boundaries[flap + "_outer"] = boundary("top", "solid_outer", "outer");
+    mesh.boundaries[flap + "_start"] = boundary("left", "solid_end", "end");
+    mesh.boundaries[flap + "_end"] = boundary("right", "solid_end", "end");
+  }
   h5::Writer w(c.solid);
   formats::write_header(w, "solidmesh", {"test", "planar", 1.0});
   formats::write_mesh(w, mesh);
-  w.write_strings("/link/flap_names", {"f0"});
-  std::vector<std::int64_t> cell_flap, cell_element;
-  for (Eigen::Index q = 0; q < mesh.quads.rows(); ++q) {
-    double xc = 0;
-    for (int a = 0; a < 4; ++a) xc += 0.25 * mesh.points(mesh.quads(q, a), 0);
-    cell_flap.push_back(0);
-    cell_element.push_back(static_cast<std::int64_t>(xc / (kLength / kElements)));
-  }
+  w.write_strings("/link/flap_names", c.two_flaps ? std::vector<std::string>{"f0", "f1"} : std::vector<std::string>{"f0"});
   w.write("/link/cell_flap", cell_flap);
   w.write("/link/cell_element", cell_element);
   std::vector<double> z;
@@ -140,24 +157,21 @@ void write_solid(const Case& c) {
   w.commit();
 }
 
-void write_flow(const Case& c) {
-  auto doc = example("flow");
-  auto& b = doc.attributes["/mesh/boundaries/sample"];
-  b["kind"] = text("wall");
-  b["flap"] = text("f0");
-  b["side"] = text("inner");
+// One flow wall trace along y = 0 from x0 to x1 (stored running the other way: the mapping must
+// not care), with uniform h, T_aw and wall temperature.
+void set_wall(formats::Document& doc, const Case& c, const std::string& wall, double x0, double x1,
+              double temperature) {
   const int n = 11;
-  std::vector<double> s, x, y, h, taw, zeros;
+  std::vector<double> s, x, y, h, t, zeros;
   for (int i = 0; i < n; ++i) {
-    // The flow wall runs the other way along the flap: the mapping must not care.
-    x.push_back(kLength * (n - 1 - i) / (n - 1));
-    s.push_back(kLength * i / (n - 1));
+    x.push_back(x1 - (x1 - x0) * i / (n - 1));
+    s.push_back((x1 - x0) * i / (n - 1));
     y.push_back(0.0);
     h.push_back(kH);
-    taw.push_back(kTaw);
+    t.push_back(temperature);
     zeros.push_back(0.0);
   }
-  const std::string w = "/walls/sample/";
+  const std::string w = "/walls/" + wall + "/";
   for (auto it = doc.datasets.begin(); it != doc.datasets.end();) {
     if (it->first.rfind(w, 0) == 0) doc.attributes.erase(it->first), it = doc.datasets.erase(it);
     else ++it;
@@ -166,16 +180,33 @@ void write_flow(const Case& c) {
   set_floats(doc, w + "x", x, "m");
   set_floats(doc, w + "y", y, "m");
   set_floats(doc, w + "pressure", std::vector<double>(n, 1e5), "Pa");
-  set_floats(doc, w + "temperature", taw, "K");
+  set_floats(doc, w + "temperature", t, "K");
   set_floats(doc, w + "wall_shear", zeros, "Pa");
   set_floats(doc, w + "heat_flux", zeros, "W/m^2");
-  set_floats(doc, w + "adiabatic_wall_temperature", taw, "K");
+  set_floats(doc, w + "adiabatic_wall_temperature", t, "K");
   if (c.with_h_trace) set_floats(doc, w + "heat_transfer_coefficient", h, "W/(m^2 K)");
   auto& node = doc.datasets[w + "node"];
   node.dtype = h5::DType::int64;
   node.shape = {static_cast<std::size_t>(n)};
   node.integers.assign(n, 0);
   doc.attributes[w + "node"]["units"] = text("1");
+}
+
+void write_flow(const Case& c) {
+  auto doc = example("flow");
+  if (c.two_flaps) {
+    copy_prefix(doc, "/mesh/boundaries/sample", "/mesh/boundaries/sample2");
+    copy_prefix(doc, "/walls/sample", "/walls/sample2");
+  }
+  for (int f = 0; f < (c.two_flaps ? 2 : 1); ++f) {
+    const std::string wall = f == 0 ? "sample" : "sample2";
+    auto& b = doc.attributes["/mesh/boundaries/" + wall];
+    b["kind"] = text("wall");
+    b["flap"] = text("f" + std::to_string(f));
+    b["side"] = text("inner");
+    const double x0 = f * (kLength + kGap);
+    set_wall(doc, c, wall, x0, x0 + kLength, f == 0 ? kTaw : 500.0);
+  }
   formats::write_document(doc, c.flow);
 }
 
@@ -186,6 +217,14 @@ void write_model(const Case& c) {
   doc.attributes["/flaps/f0"]["elements"] = integer(kElements);
   doc.attributes["/thermal"]["solid_boundary"] = text(c.solid_boundary);
   doc.attributes["/thermal"]["emissivity"] = number(kEmissivity);
+  if (c.two_flaps) {
+    copy_prefix(doc, "/flaps/f0", "/flaps/f1");
+    auto& joint = doc.attributes["/joints/sample"];
+    joint["flap_a"] = text("f0");
+    joint["end_a"] = text("end");
+    joint["flap_b"] = text("f1");
+    joint["end_b"] = text("start");
+  }
   formats::write_document(doc, c.model);
 }
 
@@ -295,6 +334,37 @@ TEST(HeatStage, FlatFlapConvectionRadiationMatchesOneDimensionalBalance) {
   const auto flux = file.read_matrix("/fields/point/heat_flux", t.size(), 3);
   EXPECT_NEAR(flux(0, 1), kH * (kTaw - t_in), 1e-6 * kH * kTaw);  // towards +y (outer)
   EXPECT_TRUE(fs::exists(c.dir / "thermal.xdmf"));
+}
+
+TEST(HeatStage, JointConductanceCouplesFlapEnds) {
+  // Two flaps with imposed inner wall temperatures 900 K and 500 K, adiabatic elsewhere: without
+  // joint conductance each flap is uniform; with it, heat crosses the gap between f0's end and
+  // f1's start, cooling f0's last beam element and heating f1's first.
+  for (double conductance : {0.0, 2000.0}) {
+    auto c = make_case(conductance > 0 ? "joint_on" : "joint_off");
+    c.two_flaps = true;
+    c.solid_boundary = "wall_temperature";
+    write_inputs(c);
+    auto options = options_of(c);
+    options.joint_conductance = conductance;
+    std::ostringstream sink;
+    const Logger log("tfmb-heat", Verbosity::quiet, sink);
+    ASSERT_EQ(heat::run(options, log), 0);
+    const auto file = formats::open_checked(c.output, "thermal");
+    const auto f0 = file.read_vector("/beam/f0/mean_temperature", kElements);
+    const auto f1 = file.read_vector("/beam/f1/mean_temperature", kElements);
+    std::printf("joint conductance %.0f: f0 last element %.4f K, f1 first element %.4f K\n",
+                conductance, f0.back(), f1.front());
+    EXPECT_NEAR(f0.front(), kTaw, 1e-6);
+    EXPECT_NEAR(f1.back(), 500.0, 1e-6);
+    if (conductance > 0) {
+      EXPECT_LT(f0.back(), kTaw - 0.1);
+      EXPECT_GT(f1.front(), 500.0 + 0.1);
+    } else {
+      EXPECT_NEAR(f0.back(), kTaw, 1e-6);
+      EXPECT_NEAR(f1.front(), 500.0, 1e-6);
+    }
+  }
 }
 
 TEST(HeatStage, BadInputsExitThreeWithClearMessages) {
