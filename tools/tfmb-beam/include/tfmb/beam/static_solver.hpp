@@ -15,7 +15,9 @@ struct StaticOptions {
   int max_iterations = 30;         // Newton iterations per step
   int max_cutbacks = 12;           // halvings of a step before giving up
   double tolerance = 1e-10;        // ||residual|| <= tolerance * force scale, or
-  double increment_tolerance = 1e-10;  // ||correction|| <= this * ||increment of the step||
+  /// ||correction|| <= this * ||increment of the step||: with quadratic convergence the state is
+  /// then converged to ~this^2 relative.
+  double increment_tolerance = 1e-8;
   double final_load_factor = 1.0;
   /// Start each step from the previous step's change scaled to the new step (secant predictor);
   /// off by default: on the strongly nonlinear benchmarks it did not save iterations.
