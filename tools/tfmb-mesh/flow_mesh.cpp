@@ -31,24 +31,65 @@ std::string num(double v) {
   return out.str();
 }
 
-// Resamples a polyline at about `size` spacing, keeping its corners (turns above 10 degrees).
-Polyline discretise(const Polyline& line, double size, int min_segments) {
-  std::vector<std::size_t> corners{0};
-  for (std::size_t i = 1; i + 1 < line.size(); ++i) {
-    const Point a = (line[i] - line[i - 1]).normalized(), b = (line[i + 1] - line[i]).normalized();
-    if (a.dot(b) < std::cos(10.0 * M_PI / 180.0)) corners.push_back(i);
+// A part of a wall between two corners (turns above 10 degrees), to be sampled as one.
+struct Part {
+  std::size_t piece;     // index within the run
+  Polyline line;
+  double size = 0.0;     // [m] target spacing inside the part
+  int min_segments = 1;
+};
+
+// Splits the wall pieces of a run at their corners.
+std::vector<Part> split_at_corners(const std::vector<const Polyline*>& lines, const std::vector<int>& min_segments,
+                                   double wall_size) {
+  std::vector<Part> parts;
+  for (std::size_t p = 0; p < lines.size(); ++p) {
+    const Polyline& line = *lines[p];
+    std::vector<std::size_t> corners{0};
+    for (std::size_t i = 1; i + 1 < line.size(); ++i) {
+      const Point a = (line[i] - line[i - 1]).normalized(), b = (line[i + 1] - line[i]).normalized();
+      if (a.dot(b) < std::cos(10.0 * M_PI / 180.0)) corners.push_back(i);
+    }
+    corners.push_back(line.size() - 1);
+    const std::size_t count = corners.size() - 1;
+    for (std::size_t k = 0; k < count; ++k) {
+      Part part;
+      part.piece = p;
+      part.line.assign(line.begin() + static_cast<std::ptrdiff_t>(corners[k]),
+                       line.begin() + static_cast<std::ptrdiff_t>(corners[k + 1]) + 1);
+      part.min_segments = count == 1 ? min_segments[p] : 1;
+      part.size = std::min(wall_size, input::length(part.line) / part.min_segments);
+      parts.push_back(std::move(part));
+    }
   }
-  corners.push_back(line.size() - 1);
-  Polyline out{line.front()};
-  const int parts = static_cast<int>(corners.size()) - 1;
-  for (int k = 0; k < parts; ++k) {
-    const Polyline part(line.begin() + static_cast<std::ptrdiff_t>(corners[static_cast<std::size_t>(k)]),
-                        line.begin() + static_cast<std::ptrdiff_t>(corners[static_cast<std::size_t>(k) + 1]) + 1);
-    const int n = std::max(parts == 1 ? min_segments : 1,
-                           static_cast<int>(std::ceil(input::length(part) / size - 1e-9)));
-    const Polyline sampled = input::resample(part, n);
-    out.insert(out.end(), sampled.begin() + 1, sampled.end());
+  return parts;
+}
+
+// Samples a part with spacing s(x) = min(size, a + g x, b + g (L - x)): the spacing grows
+// linearly (rate g, about a geometric ratio 1 + g) away from short neighbours at either end.
+Polyline sample_part(const Part& part, double a, double b, double g) {
+  const double total = input::length(part.line);
+  const int samples = 2000;
+  std::vector<double> cumulative(samples + 1, 0.0);
+  auto spacing = [&](double x) { return std::min({part.size, a + g * x, b + g * (total - x)}); };
+  for (int i = 1; i <= samples; ++i) {
+    const double x0 = total * (i - 1) / samples, x1 = total * i / samples;
+    cumulative[static_cast<std::size_t>(i)] =
+        cumulative[static_cast<std::size_t>(i - 1)] + (x1 - x0) * 0.5 * (1.0 / spacing(x0) + 1.0 / spacing(x1));
   }
+  const int n = std::max(part.min_segments, static_cast<int>(std::lround(cumulative.back())));
+  std::vector<double> s{0.0};
+  for (int k = 1; k < n; ++k) {
+    const double target = cumulative.back() * k / n;
+    const auto it = std::lower_bound(cumulative.begin(), cumulative.end(), target);
+    const std::size_t i = static_cast<std::size_t>(std::max<std::ptrdiff_t>(1, it - cumulative.begin()));
+    const double f = (target - cumulative[i - 1]) / (cumulative[i] - cumulative[i - 1]);
+    s.push_back(total * (static_cast<double>(i - 1) + f) / samples);
+  }
+  s.push_back(total);
+  Polyline out = input::points_at(part.line, s);
+  out.front() = part.line.front();
+  out.back() = part.line.back();
   return out;
 }
 
@@ -109,10 +150,22 @@ Mesh build_flow_mesh(const Model& model, const FlowMeshOptions& options, FlowMes
     run_of_piece[i] = static_cast<int>(runs.size() - 1);
   }
   for (Run& run : runs) {
+    std::vector<const Polyline*> lines;
+    std::vector<int> min_segments;
     for (std::size_t i : run.pieces) {
-      const int min_segments = pieces[i].side == "end" ? 2 : 1;
-      const Polyline d = discretise(pieces[i].points, wall_size, min_segments);
-      run.piece_start.push_back(run.nodes.empty() ? 0 : run.nodes.size() - 1);
+      lines.push_back(&pieces[i].points);
+      min_segments.push_back(pieces[i].side == "end" ? 2 : 1);
+    }
+    const auto parts = split_at_corners(lines, min_segments, wall_size);
+    std::size_t current_piece = parts.size();
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      const double a = k > 0 ? std::min(parts[k].size, parts[k - 1].size) : parts[k].size;
+      const double b = k + 1 < parts.size() ? std::min(parts[k].size, parts[k + 1].size) : parts[k].size;
+      const Polyline d = sample_part(parts[k], a, b, 0.25);
+      if (parts[k].piece != current_piece) {
+        current_piece = parts[k].piece;
+        run.piece_start.push_back(run.nodes.empty() ? 0 : run.nodes.size() - 1);
+      }
       run.nodes.insert(run.nodes.end(), run.nodes.empty() ? d.begin() : d.begin() + 1, d.end());
     }
     run.normals = input::vertex_normals(run.nodes, 2.5);
@@ -199,10 +252,13 @@ Mesh build_flow_mesh(const Model& model, const FlowMeshOptions& options, FlowMes
     bool fixed;
     std::size_t line_piece;
   };
+  // Mesh size at a strip-top point: its top edges (longer than the wall edges around convex
+  // corners, where the layers fan out), at least twice the last layer.
   auto edge_size = [&](const Run& run, std::size_t i) {
     const std::size_t n = run.nodes.size();
-    const double back = i > 0 ? (run.nodes[i] - run.nodes[i - 1]).norm() : 0.0;
-    const double ahead = i + 1 < n ? (run.nodes[i + 1] - run.nodes[i]).norm() : 0.0;
+    const auto at = [&](std::size_t k) { return points[static_cast<std::size_t>(top(run, k))]; };
+    const double back = i > 0 ? (at(i) - at(i - 1)).norm() : 0.0;
+    const double ahead = i + 1 < n ? (at(i + 1) - at(i)).norm() : 0.0;
     const double last_layer = layers > 0 ? heights.back() - heights[heights.size() - 2] : 0.0;
     return std::max({back, ahead, 2.0 * last_layer});
   };
