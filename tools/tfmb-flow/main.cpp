@@ -40,6 +40,10 @@ int main(int argc, char** argv) {
                  "[m] throat height per unit depth (planar) or [m^2] area (axisymmetric) for the discharge coefficient");
   app.add_option("--order", o.settings.order, "spatial order of the convective fluxes, 1 or 2")
       ->check(CLI::Range(1, 2))->capture_default_str();
+  app.add_option("--limiter-coefficient", o.settings.venkat_wang,
+                 "[-] Venkatakrishnan-Wang epsilon as a fraction of each variable's range (smaller: "
+                 "stronger limiting at shocks; larger: smoother, more accurate boundary layers)")
+      ->capture_default_str();
   app.add_option("--max-iterations", o.settings.max_iterations, "nonlinear iteration limit")->capture_default_str();
   app.add_option("--residual-drop", o.settings.residual_drop,
                  "[-] converged when the density residual fell by this factor")->capture_default_str();

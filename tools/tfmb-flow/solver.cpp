@@ -406,6 +406,7 @@ SolveReport FlowSolver::solve() {
   double cfl = settings_.cfl_start;
   double cfl_scale = 1.0;
   double last_omega = 1.0;
+  int collapsed = 0;
   double r_previous = std::numeric_limits<double>::infinity();
   double r_max = settings_.residual_reference;
   double r_min = std::numeric_limits<double>::infinity();
@@ -425,7 +426,9 @@ SolveReport FlowSolver::solve() {
       continue;
     }
     r_max = std::max(r_max, rnorm[0]);
-    report.residual_drop = rnorm[0] / r_max;
+    // (a start with no density residual at all, e.g. fluid at rest behind a pressure jump,
+    // has no reference yet)
+    report.residual_drop = r_max > 0.0 ? rnorm[0] / r_max : 1.0;
     if (rnorm[0] < r_min) {
       r_min = rnorm[0];
       last_minimum = it;
@@ -435,7 +438,10 @@ SolveReport FlowSolver::solve() {
       limiter_frozen_ = true;
     }
     if (it > 1) {
-      const double ser = settings_.cfl_start * cfl_scale * std::pow(r_max / rnorm[0], settings_.ser_exponent);
+      const double ser =
+          r_max > 0.0 && rnorm[0] > 0.0
+              ? settings_.cfl_start * cfl_scale * std::pow(r_max / rnorm[0], settings_.ser_exponent)
+              : settings_.cfl_start * cfl_scale;
       double adaptive = 0.0;
       if (settings_.cfl_adaptive_growth > 1.0) {
         // grow while the Newton updates are taken whole and the residual does not run away
@@ -451,7 +457,8 @@ SolveReport FlowSolver::solve() {
     rec.residual = rnorm;
     rec.cfl = cfl;
     report.residual_reference = r_max;
-    if (report.residual_drop <= settings_.residual_drop && (it > 1 || settings_.residual_reference > 0.0)) {
+    if (r_max > 0.0 && report.residual_drop <= settings_.residual_drop &&
+        (it > 1 || settings_.residual_reference > 0.0)) {
       report.converged = true;
       rec.wall_time = std::chrono::duration<double>(clock::now() - start).count();
       report.history.push_back(rec);
@@ -480,35 +487,47 @@ SolveReport FlowSolver::solve() {
     rec.linear_residual = lin.relative_residual;
     report.linear_iterations += lin.iterations;
 
-    // Relaxation: limit the relative change of density and pressure.
-    double worst = 0.0;
+    // Relaxation, node by node: limit the relative change of density and pressure, and leave
+    // a node unchanged if even the limited update is not physical. Local relaxation acts like
+    // a local time step: a near-vacuum corner does not hold back the rest of the domain.
+    double omega_min = 1.0;
+    int limited = 0;
+    u_good = u_;
     for (int i = 0; i < n; ++i) {
       State un = u_[i];
       for (int v = 0; v < 4; ++v) un[v] += du[4 * i + v];
       const State wn = gas_.primitive(un);
       const State& wo = w_[i];
-      worst = std::max({worst, std::abs(wn[0] - wo[0]) / wo[0], std::abs(wn[3] - wo[3]) / wo[3]});
-    }
-    double omega = 1.0;
-    if (!std::isfinite(worst)) omega = 0.0;
-    else if (worst > settings_.max_relative_update) omega = settings_.max_relative_update / worst;
-    rec.relaxation = omega;
-    last_omega = omega;
-    u_good = u_;
-    for (int i = 0; i < n; ++i) {
-      for (int v = 0; v < 4; ++v) u_[i][v] += omega * du[4 * i + v];
+      const double change = std::max(std::abs(wn[0] - wo[0]) / wo[0], std::abs(wn[3] - wo[3]) / wo[3]);
+      double omega_i = 1.0;
+      if (!std::isfinite(change)) omega_i = 0.0;
+      else if (change > settings_.max_relative_update) omega_i = settings_.max_relative_update / change;
+      for (int v = 0; v < 4; ++v) un[v] = u_[i][v] + omega_i * du[4 * i + v];
+      const double p_new = (gas_.gamma - 1.0) * (un[3] - 0.5 * (un[1] * un[1] + un[2] * un[2]) / un[0]);
+      if (!(un[0] > 0.0) || !(p_new > 0.0)) {
+        omega_i = 0.0;
+        un = u_[i];
+      }
+      u_[i] = un;
+      if (omega_i < 1.0) ++limited;
+      omega_min = std::min(omega_min, omega_i);
     }
     apply_strong_conditions(u_);
-    if (!physical(u_) || omega < 1e-3) {
+    const double limited_fraction = static_cast<double>(limited) / n;
+    rec.relaxation = omega_min;
+    // CFL control sees a limited update only if it concerns more than a few nodes
+    last_omega = limited_fraction <= settings_.relaxed_fraction_tolerated ? 1.0 : omega_min;
+    if (!physical(u_)) {
       u_ = u_good;
       cfl_scale *= 0.1;
       cfl *= 0.1;
       ++report.backoffs;
-    } else if (omega < 0.5) {
-      // the linearisation was far off: slow the ramp down
+    } else if (limited_fraction > settings_.relaxed_fraction_tolerated && omega_min < 0.5) {
+      // the linearisation was far off in a sizeable region: slow the ramp down
       cfl_scale *= 0.5;
       cfl *= 0.5;
     }
+    const double omega = omega_min;
     rec.wall_time = std::chrono::duration<double>(clock::now() - start).count();
     report.history.push_back(rec);
     report.iterations = it;
@@ -517,6 +536,9 @@ SolveReport FlowSolver::solve() {
                    rnorm[0], report.residual_drop, cfl, omega, lin.iterations, lin.relative_residual);
     }
     if (report.backoffs > 20) break;
+    // Give up when the CFL has collapsed: the pseudo-time march no longer moves.
+    collapsed = cfl < 1e-3 * settings_.cfl_start ? collapsed + 1 : 0;
+    if (collapsed > 10) break;
   }
   if (!report.converged) {
     compute_residual(!limiter_frozen_);

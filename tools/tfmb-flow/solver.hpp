@@ -50,7 +50,9 @@ struct SolverSettings {
   // preconditioner; the same value gives the same result on any number of threads.
   int ilu_partitions = 2;
   int gmres_max_iterations = 80;
-  double max_relative_update = 0.5;  // largest relative change of rho or p per iteration
+  double max_relative_update = 0.5;  // largest relative change of rho or p per node and iteration
+  // Fraction of nodes whose update may be relaxed without slowing the CFL ramp.
+  double relaxed_fraction_tolerated = 0.002;
   int print_every = 0;            // residual line on stderr every N iterations (0: silent)
   bool viscous = false;
   ViscousModel viscosity;
@@ -64,7 +66,7 @@ struct IterationRecord {
   int iteration = 0;
   State residual{};        // RMS of residual / volume per equation
   double cfl = 0.0;
-  double relaxation = 1.0; // fraction of the Newton update applied
+  double relaxation = 1.0; // smallest fraction of the Newton update applied at a node
   int linear_iterations = 0;
   double linear_residual = 0.0;
   double wall_time = 0.0;  // since the start of solve() [s]
