@@ -32,7 +32,7 @@ std::vector<std::string> problems(const std::filesystem::path& file, const std::
 struct Files {
   std::filesystem::path dir, model, flow;
   std::vector<tf::TestFlap> flaps;
-  explicit Files(const std::string& name, bool half_inner = false) {
+  explicit Files(const std::string& name, bool half_inner = false, bool dry_lower_outer = false) {
     dir = tf::temp_dir(name);
     model = dir / "model.h5";
     flow = dir / "flow.h5";
@@ -57,7 +57,9 @@ struct Files {
       outer.push_back(f.outer_wall.back());
       if (half_inner && f.name == "upper") inner.resize(inner.size() / 2);
       traces.push_back(tf::make_trace(f.name + "_in", f.name, "inner", inner, p, tau, -1.0));
-      traces.push_back(tf::make_trace(f.name + "_out", f.name, "outer", outer, ambient, tau, 1.0));
+      if (!(dry_lower_outer && f.name == "lower")) {
+        traces.push_back(tf::make_trace(f.name + "_out", f.name, "outer", outer, ambient, tau, 1.0));
+      }
     }
     // A wall that belongs to no flap is ignored.
     traces.push_back(tf::make_trace("duct", "", "", {{-0.2, 0.2}, {-0.1, 0.2}}, ambient, tau, -1.0));
@@ -207,4 +209,36 @@ TEST(LoadsFiles, DisplaceMapsARigidMotionAndRefusesAMismatchedStructure) {
   EXPECT_EQ(run_cli("displace " + shifted.string() + " " + files.model.string() + " -o " +
                     (files.dir / "bad.h5").string(), &err), 3);
   EXPECT_NE(err.find("/flaps/other"), std::string::npos) << err;
+}
+
+TEST(LoadsFiles, AFlapSideWithoutTracesIsRefusedUnlessGivenAPressure) {
+  const Files files("dry", false, true);
+  ForcesOptions o;
+  o.flow_file = files.flow;
+  o.model_file = files.model;
+  o.output = files.dir / "loads.h5";
+  std::ostringstream out;
+  try {
+    run_forces(o, quiet, out);
+    FAIL() << "expected BadInput";
+  } catch (const BadInput& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("flap 'lower' has no outer trace"), std::string::npos) << m;
+    EXPECT_NE(m.find("--missing-side-pressure"), std::string::npos) << m;
+  }
+  // With the ambient pressure on the dry side the loads equal those of the wetted case, whose
+  // outer trace carried the same uniform 1e5 Pa (its shear aside).
+  o.missing_side_pressure = 1e5;
+  const ForcesResult dry = run_forces(o, quiet, out);
+  const Files wet_files("wet");
+  o.flow_file = wet_files.flow;
+  o.missing_side_pressure.reset();
+  const ForcesResult wet = run_forces(o, quiet, out);
+  const auto& d = dry.loads.flaps[0].loads;  // "lower" sorts first
+  const auto& w = wet.loads.flaps[0].loads;
+  ASSERT_EQ(dry.loads.flaps[0].name, "lower");
+  // Shear of the wet outer trace: 50 x tau along the flap, w int 50 x ds.
+  const double shear = 0.5 * 50.0 * 0.3 * 0.3 / 2.0 * std::cos(0.1);
+  // (the 2 mm offset of the outer wall shifts x by up to 2e-4 m: 2e-3 N at most)
+  EXPECT_NEAR((d.traces.force - w.traces.force).norm(), shear, 3e-3);
 }

@@ -191,6 +191,10 @@ ForcesResult run_forces_unchecked(const ForcesOptions& options, const Logger& lo
     for (const auto& name : flow.skipped) logger.verbose("wall trace " + name + " belongs to no flap; not mapped");
   }
   result.loads.header.creator = "tfmb-loads " + cli::version();
+  if (result.loads.header.geometry != "planar") {
+    logger.warn(source + ": geometry '" + result.loads.header.geometry +
+                "': flap loads are computed as for a planar nozzle (per unit depth times the flap width)");
+  }
   result.loads.load_basis =
       "per unit beam length over the flap width (flow traces are per unit depth " +
       format_number(result.loads.header.depth) + " m and are multiplied by each flap's width)";
