@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include "tfmb/beam/run.hpp"
 #include "tfmb/common/errors.hpp"
@@ -140,4 +141,50 @@ TEST(Stage, UnsupportedJointKindIsBadInput) {
     EXPECT_NE(std::string(e.what()).find("flexible"), std::string::npos) << e.what();
   }
   EXPECT_FALSE(fs::exists(o.output));
+}
+
+// materials.h5: uniform thermal strain lengthens the free cantilever by eps L; a thermal
+// curvature (outer wall hotter, outer wall on the right of +x, i.e. at -y) bends it towards +y
+// into an arc of curvature kappa: tip y = (1 - cos(kappa L)) / kappa.
+TEST(Stage, ThermalStrainFromMaterials) {
+  const fs::path dir = scratch("materials");
+  beam::Options o;
+  o.model = write_cantilever_model(dir);
+  formats::Document doc = formats::example_document(*formats::find_schema("materials"));
+  const double eps = 1e-3, kappa = 0.02;
+  for (auto& [path, d] : doc.datasets) {
+    if (path.rfind("/flaps/sample/", 0) != 0) continue;
+    const std::string leaf = path.substr(14);
+    if (leaf == "section_stiffness" || leaf == "section_mass") {
+      d.shape = {3, 6, 6};
+      d.floats.assign(3 * 36, 0.0);
+      const double diag_k[6] = {1e7, kGA, kGA, 50.0, kEI, kEI};
+      for (int e = 0; e < 3; ++e)
+        for (int i = 0; i < 6; ++i) d.floats[36 * e + 7 * i] = leaf == "section_stiffness" ? diag_k[i] : 1.0;
+    } else if (d.dtype == h5::DType::int64) {
+      d.shape = {3};
+      d.integers.assign(3, 0);
+    } else {
+      d.shape = {3};
+      d.floats.assign(3, leaf == "thermal_strain" ? eps : leaf == "thermal_curvature" ? kappa : 1.0);
+    }
+  }
+  doc.attributes["/flaps/sample"]["outer_normal_sign"].integer = -1;
+  o.materials = dir / "materials.h5";
+  formats::write_document(doc, o.materials);
+  o.output = dir / "structure.h5";
+  const Logger log("tfmb-beam", Verbosity::quiet);
+  EXPECT_EQ(beam::run(o, log), 0);
+  const h5::Reader r = formats::open_checked(o.output, "structure");
+  const h5::MatrixXdR u = r.read_matrix("/fields/point/displacement");
+  const Eigen::Index tip = u.rows() - 1;
+  const double x_exact = std::sin(kappa * kLength) / kappa * (1 + eps) - kLength;
+  const double y_exact = (1 - std::cos(kappa * kLength)) / kappa * (1 + eps);
+  EXPECT_NEAR(u(tip, 0), x_exact, 1e-8);
+  EXPECT_NEAR(u(tip, 1), y_exact, 1e-6 * y_exact);
+  // The sidecar opens the result as a polyline with its fields.
+  std::ifstream x(dir / "structure.xdmf");
+  const std::string text((std::istreambuf_iterator<char>(x)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("Polyline"), std::string::npos);
+  EXPECT_NE(text.find("structure.h5:/fields/point/displacement"), std::string::npos);
 }

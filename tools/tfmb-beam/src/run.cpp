@@ -1,6 +1,7 @@
 #include "tfmb/beam/run.hpp"
 
 #include <chrono>
+#include <fstream>
 #include <cmath>
 #include <sstream>
 
@@ -165,8 +166,8 @@ FileModel read_model(const Options& options) {
       }
     }
   }
-  // Materials: temperature-dependent stiffness (scaled from the model's room-temperature
-  // section) and thermal strain and curvature per element.
+  // Materials: per element section stiffness and mass at the element temperature, thermal
+  // strain (thickness mean) and thermal curvature as initial strains.
   if (!options.materials.empty()) {
     const h5::Reader mt = formats::open_checked(options.materials, "materials");
     for (const auto& name : mt.children("/flaps")) {
@@ -175,36 +176,31 @@ FileModel read_model(const Options& options) {
       const auto& els = fm.flap_elements[name];
       const size_t ne = els.size();
       const auto eps = mt.read_vector(g + "/thermal_strain", ne);
-      const auto eps_in = mt.read_vector(g + "/thermal_strain_inner", ne);
-      const auto eps_out = mt.read_vector(g + "/thermal_strain_outer", ne);
-      const auto youngs = mt.read_vector(g + "/youngs_modulus", ne);
-      const auto shear = mt.read_vector(g + "/shear_modulus", ne);
-      const double t = mt.attr_f64(g, "thickness");
-      const std::string mg = "/flaps/" + name;
-      const double e0 = f.has_attr(mg, "youngs_modulus") ? f.attr_f64(mg, "youngs_modulus") : 0.0;
-      const double nu0 = f.has_attr(mg, "poisson_ratio") ? f.attr_f64(mg, "poisson_ratio") : 0.3;
-      // Which side of e2 is the inner wall: compare the model's inner wall with the reference line.
-      const h5::MatrixXdR inner = f.read_matrix(mg + "/inner_wall", {}, 2);
-      const h5::MatrixXdR refg = f.read_matrix(mg + "/reference_geometry", {}, 2);
-      const Eigen::Vector3d off(inner(0, 0) - refg(0, 0), inner(0, 1) - refg(0, 1), 0.0);
-      const double inner_sign = off.dot(m.nodes[fm.flap_nodes[name].front()].frame.col(1)) >= 0.0 ? 1.0 : -1.0;
+      const auto kappa = mt.read_vector(g + "/thermal_curvature", ne);
+      const double outer_sign = static_cast<double>(mt.attr_i64(g, "outer_normal_sign"));
+      std::vector<std::size_t> shape_k, shape_m;
+      const auto stiff = mt.read_f64(g + "/section_stiffness", &shape_k);
+      const auto mass = mt.read_f64(g + "/section_mass", &shape_m);
+      if (shape_k != std::vector<std::size_t>{ne, 6, 6}) mt.fail(g + "/section_stiffness", "shape must be (" + std::to_string(ne) + ",6,6), one per model element");
+      if (shape_m != std::vector<std::size_t>{ne, 6, 6}) mt.fail(g + "/section_mass", "shape must be (" + std::to_string(ne) + ",6,6), one per model element");
       for (size_t e = 0; e < ne; ++e) {
         Element& el = m.elements[els[e]];
-        // Free strain across the thickness: eps(y2) linear; bending strain is -k3 y2.
-        const double eps_plus = inner_sign > 0 ? eps_in[e] : eps_out[e];
-        const double eps_minus = inner_sign > 0 ? eps_out[e] : eps_in[e];
+        Section s;
+        for (int i = 0; i < 6; ++i)
+          for (int j = 0; j < 6; ++j) s.stiffness(i, j) = stiff[36 * e + 6 * i + j];
+        for (int i = 0; i < 6; ++i)
+          if (!(s.stiffness(i, i) > 0.0)) mt.fail(g + "/section_stiffness", "element " + std::to_string(e) + ": diagonal entry " + std::to_string(i) + " must be > 0");
+        s.mass_per_length = mass[36 * e];
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) s.inertia_per_length(i, j) = mass[36 * e + 6 * (3 + i) + 3 + j];
+        el.section = static_cast<int>(m.sections.size());
+        m.sections.push_back(s);
+        // Bending strain is -k3 y2 (y2 along e2, the left of the reference direction); the free
+        // thermal strain grows towards the outer wall by kappa per unit length, so
+        // k3_thermal = -kappa * outer_normal_sign.
         el.initial_strain.setZero();
         el.initial_strain(0) = eps[e];
-        if (t > 0.0) el.initial_strain(5) = -(eps_plus - eps_minus) / t;
-        if (e0 > 0.0) {
-          const double g0 = e0 / (2.0 * (1.0 + nu0));
-          Section s = m.sections[el.section];
-          const double fe = youngs[e] / e0, fg = shear[e] / g0;
-          for (int i : {0, 4, 5}) s.stiffness.row(i) *= std::sqrt(fe), s.stiffness.col(i) *= std::sqrt(fe);
-          for (int i : {1, 2, 3}) s.stiffness.row(i) *= std::sqrt(fg), s.stiffness.col(i) *= std::sqrt(fg);
-          el.section = static_cast<int>(m.sections.size());
-          m.sections.push_back(s);
-        }
+        el.initial_strain(5) = -kappa[e] * outer_sign;
       }
     }
   }
@@ -212,6 +208,34 @@ FileModel read_model(const Options& options) {
 }
 
 namespace {
+
+/// XDMF 3 sidecar "<output minus .h5>.xdmf" for ParaView and meshio: the beam as a polyline of
+/// display segments, nodal displacement and rotation, sectional strain and force per segment.
+void write_structure_xdmf(const std::filesystem::path& h5file, std::size_t n_points, std::size_t n_segments) {
+  std::filesystem::path xdmf = h5file;
+  xdmf.replace_extension(".xdmf");
+  const std::string h5 = h5file.filename().string();
+  std::ofstream out(xdmf.string() + ".tmp");
+  auto item = [&](const std::string& path, const std::string& dims, const char* type, int precision) {
+    return "<DataItem Dimensions=\"" + dims + "\" NumberType=\"" + type + "\" Precision=\"" + std::to_string(precision) +
+           "\" Format=\"HDF\">" + h5 + ":" + path + "</DataItem>";
+  };
+  const std::string np = std::to_string(n_points), ns = std::to_string(n_segments);
+  out << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n<Domain>\n<Grid Name=\"beam\" GridType=\"Uniform\">\n"
+      << "<Topology TopologyType=\"Polyline\" NodesPerElement=\"2\" NumberOfElements=\"" << ns << "\">"
+      << item("/beam/segments", ns + " 2", "Int", 8) << "</Topology>\n"
+      << "<Geometry GeometryType=\"XYZ\">" << item("/beam/points", np + " 3", "Float", 8) << "</Geometry>\n";
+  for (const char* f : {"displacement", "rotation"})
+    out << "<Attribute Name=\"" << f << "\" AttributeType=\"Vector\" Center=\"Node\">"
+        << item(std::string("/fields/point/") + f, np + " 3", "Float", 8) << "</Attribute>\n";
+  for (const char* f : {"sectional_strain", "sectional_force"})
+    out << "<Attribute Name=\"" << f << "\" AttributeType=\"Matrix\" Center=\"Cell\">"
+        << item(std::string("/fields/cell/") + f, ns + " 6", "Float", 8) << "</Attribute>\n";
+  out << "</Grid>\n</Domain>\n</Xdmf>\n";
+  out.close();
+  if (!out) throw InternalError("cannot write " + xdmf.string());
+  std::filesystem::rename(xdmf.string() + ".tmp", xdmf);
+}
 
 void write_structure(const Options& options, const FileModel& fm, const Assembly& asmb, const State& state,
                      const std::string& analysis, bool converged, const std::vector<double>& times,
@@ -305,6 +329,7 @@ void write_structure(const Options& options, const FileModel& fm, const Assembly
   if (!options.materials.empty()) prov.inputs.push_back(options.materials);
   formats::write_provenance(w, prov);
   w.commit();
+  write_structure_xdmf(options.output, static_cast<std::size_t>(n), static_cast<std::size_t>(ns));
 }
 
 }  // namespace
