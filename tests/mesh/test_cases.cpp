@@ -3,6 +3,8 @@
 // cells are counter-clockwise and boundary edges chain head to tail.
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include "mesh_tools.hpp"
 #include "run_tool.hpp"
 #include "tfmb/formats/schema.hpp"
@@ -18,6 +20,33 @@ void expect_good_mesh(const std::filesystem::path& file, const std::string& kind
   const auto q = tfmb::mesh::mesh_quality(mesh);
   EXPECT_EQ(q.invalid_cells, 0u) << file;
   EXPECT_GT(q.min_area, 0.0) << file;
+  // Watertight: every cell edge is shared by two cells or lies on exactly one tagged boundary.
+  std::map<std::pair<std::int64_t, std::int64_t>, int> uses;
+  auto add = [&](std::int64_t a, std::int64_t b) { ++uses[{std::min(a, b), std::max(a, b)}]; };
+  for (Eigen::Index c = 0; c < mesh.triangles.rows(); ++c) {
+    for (int k = 0; k < 3; ++k) add(mesh.triangles(c, k), mesh.triangles(c, (k + 1) % 3));
+  }
+  for (Eigen::Index c = 0; c < mesh.quads.rows(); ++c) {
+    for (int k = 0; k < 4; ++k) add(mesh.quads(c, k), mesh.quads(c, (k + 1) % 4));
+  }
+  std::map<std::pair<std::int64_t, std::int64_t>, int> tagged;
+  for (const auto& [name, b] : mesh.boundaries) {
+    for (Eigen::Index e = 0; e < b.edges.rows(); ++e) {
+      ++tagged[{std::min(b.edges(e, 0), b.edges(e, 1)), std::max(b.edges(e, 0), b.edges(e, 1))}];
+    }
+  }
+  std::size_t open = 0, overused = 0, untagged = 0;
+  for (const auto& [edge, count] : uses) {
+    overused += count > 2;
+    if (count == 1) {
+      ++open;
+      untagged += tagged.count(edge) == 0;
+    }
+  }
+  EXPECT_EQ(overused, 0u) << file;
+  EXPECT_EQ(untagged, 0u) << file;
+  EXPECT_EQ(tagged.size(), open) << file << ": every tagged edge must be an open cell edge, once";
+  for (const auto& [edge, count] : tagged) EXPECT_EQ(count, 1) << file;
   for (const auto& [name, b] : mesh.boundaries) {
     ASSERT_GT(b.edges.rows(), 0) << name;
     for (Eigen::Index e = 1; e < b.edges.rows(); ++e) {
