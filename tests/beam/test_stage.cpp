@@ -70,6 +70,9 @@ fs::path write_loads(const fs::path& dir, double q) {
   std::vector<std::vector<double>> f;
   for (int i = 0; i < 4; ++i) f.push_back({0.0, -q, 0.0});
   set_matrix(doc.datasets["/flaps/sample/distributed_force"], f);
+  const std::vector<std::vector<double>> zero(4, std::vector<double>(3, 0.0));
+  set_matrix(doc.datasets["/flaps/sample/distributed_moment"], zero);
+  set_matrix(doc.datasets["/flaps/sample/nodal_moment"], zero);
   const fs::path file = dir / "loads.h5";
   formats::write_document(doc, file);
   return file;
@@ -187,4 +190,33 @@ TEST(Stage, ThermalStrainFromMaterials) {
   const std::string text((std::istreambuf_iterator<char>(x)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("Polyline"), std::string::npos);
   EXPECT_NE(text.find("structure.h5:/fields/point/displacement"), std::string::npos);
+}
+
+// Nodal moments of loads.h5 (wall offsets) and --point-load: a tip moment M gives the tip
+// rotation M L / EI; a tip force P adds P L^3 / (3 EI) + P L / GA of deflection.
+TEST(Stage, NodalMomentsAndPointLoads) {
+  const fs::path dir = scratch("moments");
+  beam::Options o;
+  o.model = write_cantilever_model(dir);
+  formats::Document doc = formats::example_document(*formats::find_schema("loads"));
+  std::vector<std::vector<double>> zero(4, std::vector<double>(3, 0.0)), mom = zero;
+  const double m_tip = 1e-3, p_tip = 2e-3;
+  mom[3][2] = m_tip;
+  set_matrix(doc.datasets["/flaps/sample/distributed_force"], zero);
+  set_matrix(doc.datasets["/flaps/sample/distributed_moment"], zero);
+  set_matrix(doc.datasets["/flaps/sample/nodal_moment"], mom);
+  o.loads = dir / "loads.h5";
+  formats::write_document(doc, o.loads);
+  o.point_loads = {"sample:end:0,-" + std::to_string(p_tip)};
+  o.output = dir / "structure.h5";
+  o.dead_loads = true;
+  const Logger log("tfmb-beam", Verbosity::quiet);
+  EXPECT_EQ(beam::run(o, log), 0);
+  const h5::Reader r = formats::open_checked(o.output, "structure");
+  const h5::MatrixXdR u = r.read_matrix("/fields/point/displacement");
+  const Eigen::Index tip = u.rows() - 1;
+  const double exact = -m_tip * kLength * kLength / (2 * kEI) + p_tip * std::pow(kLength, 3) / (3 * kEI) + p_tip * kLength / kGA;
+  EXPECT_NEAR(-u(tip, 1), exact, 1e-5 * std::abs(exact));
+  o.point_loads = {"sample:middle:0,1"};
+  EXPECT_THROW(beam::run(o, log), UsageError);
 }

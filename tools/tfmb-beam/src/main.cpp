@@ -4,6 +4,7 @@
 //   tfmb-beam model.h5 loads.h5 materials.h5 -o structure.h5
 //   tfmb-beam model.h5 loads.h5 -o structure.h5 --analysis dynamic --end-time 1 --time-step 1e-3
 //   tfmb-beam model.h5 -o modes.h5 --analysis modal --modes 10
+//   tfmb-beam model.h5 -o structure.h5 --point-load beam_a:end:0,-0.01   (cases/beam-revolute)
 #include "tfmb/beam/run.hpp"
 #include "tfmb/common/cli.hpp"
 #include "tfmb/common/errors.hpp"
@@ -28,6 +29,8 @@ int main(int argc, char** argv) {
       ->capture_default_str()->check(CLI::Range(0.0, 1.0));
   app.add_option("--modes", options.modes, "modal: number of modes")->capture_default_str()->check(CLI::PositiveNumber);
   app.add_flag("--dead-loads", options.dead_loads, "apply loads.h5 forces as dead loads (default: follower, i.e. pressure turning with the wall)");
+  app.add_option("--point-load", options.point_loads,
+                 "dead point load at a flap end, flap:start|end:fx,fy[,mz] [N, N m]; repeatable");
   return tfmb::cli::run_main(app, argc, argv, [&] {
     options.command_line = tfmb::cli::command_line(argc, argv);
     options.model = inputs.at(0);

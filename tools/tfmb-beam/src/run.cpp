@@ -146,6 +146,31 @@ FileModel read_model(const Options& options) {
   add_planar_constraints(m);
   fm.joint_names.resize(m.joints.size());
 
+  for (const std::string& spec : options.point_loads) {
+    const auto c1 = spec.find(':'), c2 = spec.find(':', c1 == std::string::npos ? c1 : c1 + 1);
+    if (c1 == std::string::npos || c2 == std::string::npos)
+      throw UsageError("--point-load '" + spec + "': expected flap:start|end:fx,fy[,mz]");
+    const std::string flap = spec.substr(0, c1), end = spec.substr(c1 + 1, c2 - c1 - 1);
+    std::vector<double> v;
+    std::stringstream ss(spec.substr(c2 + 1));
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+      try {
+        v.push_back(std::stod(item));
+      } catch (...) {
+        throw UsageError("--point-load '" + spec + "': '" + item + "' is not a number");
+      }
+    }
+    if (!fm.flap_nodes.count(flap)) throw UsageError("--point-load '" + spec + "': no flap '" + flap + "' in the model");
+    if ((end != "start" && end != "end") || v.size() < 2 || v.size() > 3)
+      throw UsageError("--point-load '" + spec + "': expected flap:start|end:fx,fy[,mz]");
+    NodalLoad l;
+    l.node = end == "start" ? fm.flap_nodes[flap].front() : fm.flap_nodes[flap].back();
+    l.force = Eigen::Vector3d(v[0], v[1], 0.0);
+    if (v.size() == 3) l.moment = Eigen::Vector3d(0.0, 0.0, v[2]);
+    m.nodal_loads.push_back(l);
+  }
+
   // Loads: distributed force per unit length at the flap nodes, linear between them; the
   // element average goes on each quadratic element (exact resultant).
   if (!options.loads.empty()) {
@@ -163,6 +188,18 @@ FileModel read_model(const Options& options) {
         // Follower loads are given in the section frame of the reference configuration.
         d.force_per_length = d.follower ? Eigen::Vector3d(m.nodes[m.elements[els[e]].nodes[1]].frame.transpose() * avg) : avg;
         m.distributed_loads.push_back(d);
+      }
+      // Distributed moments (wall offset from the reference line) as the file's consistent nodal
+      // moments at the flap nodes (the end nodes of the quadratic elements).
+      const h5::MatrixXdR mom = l.read_matrix(g + "/nodal_moment", static_cast<Eigen::Index>(els.size() + 1), 3);
+      for (Eigen::Index i = 0; i < mom.rows(); ++i) {
+        if (mom.row(i).norm() == 0.0) continue;
+        NodalLoad nl;
+        nl.node = fm.flap_nodes[name][2 * i];
+        nl.moment = mom.row(i).transpose();
+        nl.follower = !options.dead_loads;
+        if (nl.follower) nl.moment = m.nodes[nl.node].frame.transpose() * nl.moment;
+        m.nodal_loads.push_back(nl);
       }
     }
   }

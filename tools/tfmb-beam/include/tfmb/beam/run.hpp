@@ -23,6 +23,9 @@ struct Options {
   double rho_infinity = 0.8;        // dynamic: spectral radius at infinity
   int modes = 6;                    // modal: number of modes
   bool dead_loads = false;          // loads.h5 forces as dead loads (default: follower, pressure)
+  /// Dead point loads "flap:start|end:fx,fy[,mz]" [N, N m] at flap ends (e.g. the seed's centre
+  /// load of cases/beam-revolute); held constant in time in dynamics.
+  std::vector<std::string> point_loads;
   std::string command_line;
 };
 
