@@ -242,3 +242,21 @@ TEST(LoadsFiles, AFlapSideWithoutTracesIsRefusedUnlessGivenAPressure) {
   // (the 2 mm offset of the outer wall shifts x by up to 2e-4 m: 2e-3 N at most)
   EXPECT_NEAR((d.traces.force - w.traces.force).norm(), shear, 3e-3);
 }
+
+TEST(LoadsFiles, ATraceFarFromItsFlapIsRefused) {
+  const Files files("stray");
+  // The upper flap's walls again, labelled as the lower flap's end face.
+  std::vector<tf::TestTrace> traces;
+  auto p = [](const Vec2&) { return 1e5; };
+  for (const auto& f : files.flaps) {
+    traces.push_back(tf::make_trace(f.name + "_in", f.name, "inner", f.inner_wall, p, p, -1.0));
+    traces.push_back(tf::make_trace(f.name + "_out", f.name, "outer", f.outer_wall, p, p, 1.0));
+  }
+  traces.push_back(tf::make_trace("stray", "lower", "end", files.flaps[0].outer_wall, p, p, 1.0));
+  tf::write_flow(files.flow, traces);
+  std::string err;
+  EXPECT_EQ(run_cli("forces " + files.flow.string() + " " + files.model.string() + " -o " +
+                    (files.dir / "loads.h5").string(), &err), 3);
+  EXPECT_NE(err.find("/walls/stray: point 0 lies"), std::string::npos) << err;
+  EXPECT_NE(err.find("flap attribute"), std::string::npos) << err;
+}

@@ -246,6 +246,18 @@ ForcesResult run_forces_unchecked(const ForcesOptions& options, const Logger& lo
         entry.traces.push_back(t.name);
       }
     }
+    // A trace far from its flap's beam is a mislabelled boundary, not a load on this flap.
+    const double reach = std::max(10.0 * flap.thickness, 0.1 * beam.length());
+    for (const WallTrace* t : flap_traces) {
+      for (std::size_t k = 0; k < t->points.size(); ++k) {
+        const double distance = (t->points[k] - beam.project(t->points[k]).point).norm();
+        if (distance > reach) {
+          throw BadInput(source + ": /walls/" + t->name + ": point " + std::to_string(k) + " lies " +
+                         format_number(distance) + " m from the beam of flap '" + flap.name +
+                         "' (more than " + format_number(reach) + " m): is the boundary's flap attribute right?");
+        }
+      }
+    }
     for (Side side : {Side::inner, Side::outer}) {
       std::vector<const WallTrace*> side_traces;
       for (const WallTrace* t : flap_traces) {
