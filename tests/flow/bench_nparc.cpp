@@ -25,8 +25,6 @@ int main(int argc, char** argv) {
   if (argc > 6) s.venkat_k = std::atof(argv[6]);
   if (argc > 7) s.print_every = std::atoi(argv[7]);
   if (argc > 8) s.cfl_max = std::atof(argv[8]);
-  if (std::getenv("MRU")) s.max_relative_update = std::atof(std::getenv("MRU"));
-  if (std::getenv("GROW")) s.cfl_adaptive_growth = std::atof(std::getenv("GROW"));
   if (argc > 9) s.linear_tolerance = std::atof(argv[9]);
   if (std::getenv("NORENUMBER")) s.renumber = false;
   FlowSolver solver(nparc::make_mesh(ni, nj), Geometry::planar, gas, nparc::boundary_conditions(pe), s);
