@@ -200,3 +200,19 @@ TEST(Joints, BadJointDataIsRejected) {
   m.joints.back().node_b = 99;
   EXPECT_THROW(Assembly{m}, ModelError);
 }
+
+// Newton failure: with too few iterations allowed the solver cuts back, then stops with the last
+// converged state (load factor < 1) instead of throwing or returning a diverged state.
+TEST(Statics, NonConvergenceReturnsLastConvergedState) {
+  Model m = cases::bend45(8, 600.0, 1.0, 1.0 / 6.0);
+  Assembly asmb(m);
+  StaticOptions opt;
+  opt.initial_steps = 1;
+  opt.max_iterations = 3;
+  opt.max_cutbacks = 3;
+  const StaticResult r = solve_static(asmb, asmb.initial_state(), opt);
+  EXPECT_FALSE(r.converged);
+  EXPECT_LT(r.load_factor, 1.0);
+  EXPECT_EQ(r.cutbacks, 4);
+  for (const auto& x : r.state.position) EXPECT_TRUE(x.allFinite());
+}
