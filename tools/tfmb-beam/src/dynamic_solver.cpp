@@ -26,7 +26,7 @@ AlphaParameters alpha_parameters(double rho) {
 
 }  // namespace
 
-DynamicSolver::DynamicSolver(const Assembly& assembly, DynamicOptions options)
+DynamicSolver::DynamicSolver(Assembly& assembly, DynamicOptions options)
     : assembly_(assembly), options_(std::move(options)), mass_(build_mass(assembly.model())) {
   if (!(options_.time_step > 0.0)) throw ModelError("dynamic analysis: time_step must be > 0 [s]");
   if (options_.rho_infinity < 0.0 || options_.rho_infinity > 1.0)
@@ -127,10 +127,9 @@ DynamicResult DynamicSolver::run(const State& initial) {
   double mass_diag = 0.0;
   for (int i = 0; i < nn; ++i) mass_diag += mass_.mass_scalar.coeff(i, i);
   mass_diag /= std::max(nn, 1);
-  Assembly& asmb = const_cast<Assembly&>(assembly_);
-  const double old_scale = asmb.constraint_scale();
-  const double scale = asmb.typical_stiffness() + bpp * mass_diag;
-  asmb.set_constraint_scale(scale);
+  const double old_scale = assembly_.constraint_scale();
+  const double scale = assembly_.typical_stiffness() + bpp * mass_diag;
+  assembly_.set_constraint_scale(scale);
   st.multipliers *= old_scale / scale;
 
   motion_.velocity.assign(nn, Eigen::Vector3d::Zero());

@@ -46,7 +46,9 @@ struct Motion {
 
 class DynamicSolver {
  public:
-  DynamicSolver(const Assembly& assembly, DynamicOptions options);
+  /// The solver re-scales the assembly's constraint rows for the dynamic iteration matrix
+  /// (hence the non-const reference); states passed to run() are converted.
+  DynamicSolver(Assembly& assembly, DynamicOptions options);
   /// Integrates from `initial` (at rest unless initial velocities are set with set_velocity).
   DynamicResult run(const State& initial);
   void set_initial_velocity(const std::vector<Eigen::Vector3d>& velocity,
@@ -58,7 +60,7 @@ class DynamicSolver {
   double potential_energy(const State& state, double time) const;
 
  private:
-  const Assembly& assembly_;
+  Assembly& assembly_;
   DynamicOptions options_;
   MassModel mass_;
   Motion motion_;
