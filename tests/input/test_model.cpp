@@ -4,9 +4,9 @@
 
 #include <cmath>
 
-#include "case_file.hpp"
-#include "model_build.hpp"
-#include "polyline.hpp"
+#include "tfmb-input/case_file.hpp"
+#include "tfmb-input/model_build.hpp"
+#include "tfmb-input/polyline.hpp"
 #include "run_tool.hpp"
 
 using namespace tfmb::input;

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "polyline.hpp"
+#include "tfmb-input/polyline.hpp"
 
 using namespace tfmb::input;
 

@@ -5,9 +5,9 @@
 #include <cstdlib>
 #include <sstream>
 
-#include "case_file.hpp"
-#include "mesh_tools.hpp"
-#include "model_build.hpp"
+#include "tfmb-input/case_file.hpp"
+#include "tfmb-mesh/mesh_tools.hpp"
+#include "tfmb-input/model_build.hpp"
 
 int main(int argc, char** argv) {
   using namespace tfmb;

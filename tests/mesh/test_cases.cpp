@@ -5,7 +5,7 @@
 
 #include <map>
 
-#include "mesh_tools.hpp"
+#include "tfmb-mesh/mesh_tools.hpp"
 #include "run_tool.hpp"
 #include "tfmb/formats/schema.hpp"
 

@@ -5,10 +5,10 @@
 #include <cmath>
 #include <set>
 
-#include "case_file.hpp"
-#include "mesh_tools.hpp"
-#include "model_build.hpp"
-#include "polyline.hpp"
+#include "tfmb-input/case_file.hpp"
+#include "tfmb-mesh/mesh_tools.hpp"
+#include "tfmb-input/model_build.hpp"
+#include "tfmb-input/polyline.hpp"
 #include "tfmb/common/errors.hpp"
 #include "run_tool.hpp"
 #include "tfmb/formats/files.hpp"

@@ -11,7 +11,7 @@
 #include <sstream>
 
 #include "mesh_tools.hpp"
-#include "polyline.hpp"
+#include "tfmb-input/polyline.hpp"
 #include "tfmb/common/errors.hpp"
 #include "tfmb/formats/schema.hpp"
 

@@ -9,10 +9,10 @@
 #include <map>
 #include <sstream>
 
-#include "case_file.hpp"
-#include "geometry_io.hpp"
+#include "tfmb-input/case_file.hpp"
+#include "tfmb-input/geometry_io.hpp"
 #include "mesh_tools.hpp"
-#include "polyline.hpp"
+#include "tfmb-input/polyline.hpp"
 #include "tfmb/common/errors.hpp"
 
 namespace tfmb::mesh {

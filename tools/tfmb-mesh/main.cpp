@@ -6,7 +6,7 @@
 //   tfmb-mesh flow model.h5 -o flowmesh.h5 --scale 4     # 4x coarser (every size times 4)
 //   tfmb-mesh solid model.h5 -o solidmesh.h5
 //   tfmb-mesh deform flowmesh.h5 walldisp.h5 -o flowmesh2.h5   # exit 3 + admissible fraction if cells fold
-#include "mesh_tools.hpp"
+#include "tfmb-mesh/mesh_tools.hpp"
 #include "tfmb/common/cli.hpp"
 
 int main(int argc, char** argv) {

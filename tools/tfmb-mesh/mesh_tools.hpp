@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "model.hpp"
+#include "tfmb-input/model.hpp"
 #include "tfmb/common/log.hpp"
 #include "tfmb/formats/files.hpp"
 

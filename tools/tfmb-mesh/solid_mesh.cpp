@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "mesh_tools.hpp"
-#include "polyline.hpp"
+#include "tfmb-input/polyline.hpp"
 #include "tfmb/common/errors.hpp"
 
 namespace tfmb::mesh {

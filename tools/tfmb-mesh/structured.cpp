@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "case_file.hpp"
+#include "tfmb-input/case_file.hpp"
 #include "mesh_tools.hpp"
-#include "polyline.hpp"
+#include "tfmb-input/polyline.hpp"
 #include "tfmb/common/errors.hpp"
 
 namespace tfmb::mesh {
