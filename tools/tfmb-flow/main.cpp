@@ -44,6 +44,8 @@ int main(int argc, char** argv) {
                  "[-] Venkatakrishnan-Wang epsilon as a fraction of each variable's range (smaller: "
                  "stronger limiting at shocks; larger: smoother, more accurate boundary layers)")
       ->capture_default_str();
+  app.add_option("--entropy-fix", o.settings.entropy_fix,
+                 "[-] Harten entropy-fix width as a fraction of the sound speed")->capture_default_str();
   app.add_option("--max-iterations", o.settings.max_iterations, "nonlinear iteration limit")->capture_default_str();
   app.add_option("--residual-drop", o.settings.residual_drop,
                  "[-] converged when the density residual fell by this factor")->capture_default_str();
