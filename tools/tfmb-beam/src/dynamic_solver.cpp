@@ -29,6 +29,9 @@ AlphaParameters alpha_parameters(double rho) {
 DynamicSolver::DynamicSolver(Assembly& assembly, DynamicOptions options)
     : assembly_(assembly), options_(std::move(options)), mass_(build_mass(assembly.model())) {
   if (!(options_.time_step > 0.0)) throw ModelError("dynamic analysis: time_step must be > 0 [s]");
+  motion_.velocity.assign(assembly.num_nodes(), Eigen::Vector3d::Zero());
+  motion_.angular_velocity.assign(assembly.num_nodes(), Eigen::Vector3d::Zero());
+  motion_.joint_rates.setZero(assembly.num_joint_dofs());
   if (options_.rho_infinity < 0.0 || options_.rho_infinity > 1.0)
     throw ModelError("dynamic analysis: rho_infinity must be in [0, 1], got " + std::to_string(options_.rho_infinity));
 }

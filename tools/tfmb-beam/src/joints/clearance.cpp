@@ -129,19 +129,44 @@ class Clearance final : public Joint {
     const double speed = vt.norm();
     if (speed < 1e-14) return;
     const double vreg = spec_.friction_regularisation_speed;
-    const Eigen::Vector3d ft = -spec_.friction_coefficient * fn * std::tanh(speed / vreg) * vt / speed;
-    // Residual convention: force = internal - external, so applied forces enter with a minus sign.
-    const int ob = spec_.node_a >= 0 ? 6 : 0;
+    const double th = std::tanh(speed / vreg);
+    const Eigen::Vector3d dir = vt / speed;
+    const Eigen::Vector3d ft = -spec_.friction_coefficient * fn * th * dir;
+    // Generalized forces on the bodies: force at the contact point and its moment about the node,
+    // f = G F with G = [I; S(r)] (r = R_p n on the pin, R_h n on the hole, with opposite sign).
+    const Eigen::Matrix3d id = Eigen::Matrix3d::Identity();
+    const Eigen::Matrix3d pt = id - n * n.transpose() - e3 * e3.transpose();
+    const Eigen::Vector3d rb = spec_.pin_radius * n, ra = spec_.hole_radius * n;
+    const bool two = spec_.node_a >= 0;
+    const int ob = two ? 6 : 0;
+    // Residual convention: internal - external, so applied forces enter with a minus sign.
     out.force.segment<3>(ob) -= ft;
-    out.force.segment<3>(ob + 3) -= (spec_.pin_radius * n).cross(ft);
-    if (spec_.node_a >= 0) {
+    out.force.segment<3>(ob + 3) -= rb.cross(ft);
+    if (two) {
       out.force.segment<3>(0) += ft;
-      out.force.segment<3>(3) += (spec_.hole_radius * n).cross(ft);
+      out.force.segment<3>(3) += ra.cross(ft);
     }
-    // Viscous-like tangent of the regularised law near stick, d F_t / d v_t ~ mu F_n / v_reg.
-    const double c = spec_.friction_coefficient * fn / vreg * (1.0 - std::pow(std::tanh(speed / vreg), 2));
-    const Eigen::Matrix3d pt = Eigen::Matrix3d::Identity() - n * n.transpose() - e3 * e3.transpose();
-    out.stiffness.block<3, 3>(ob, ob) += c * ctx.rate_factor * pt;
+    // Velocity tangent (positions held): dF/dv_t = -mu F_n [tanh(s/vr)/s (P - d d^T) +
+    // sech^2(s/vr)/vr d d^T], v_t = P (v_B + w_B x r_b - v_A - w_A x r_a), and d(rate)/d(increment)
+    // = rate_factor. The dependence on positions is left out (Newton converges, more slowly).
+    const Eigen::Matrix3d dd = dir * dir.transpose();
+    const Eigen::Matrix3d dfdv =
+        -spec_.friction_coefficient * fn * ((th / speed) * (pt - dd) + (1.0 - th * th) / vreg * dd);
+    Eigen::Matrix<double, 3, 12> jv = Eigen::Matrix<double, 3, 12>::Zero();  // d v_t / d(rates)
+    Eigen::Matrix<double, 12, 3> g = Eigen::Matrix<double, 12, 3>::Zero();   // generalized force map
+    jv.block<3, 3>(0, ob) = pt;
+    jv.block<3, 3>(0, ob + 3) = -pt * skew<double>(rb);
+    g.block<3, 3>(ob, 0) = id;
+    g.block<3, 3>(ob + 3, 0) = skew<double>(rb);
+    if (two) {
+      jv.block<3, 3>(0, 0) = -pt;
+      jv.block<3, 3>(0, 3) = pt * skew<double>(ra);
+      g.block<3, 3>(0, 0) = -id;
+      g.block<3, 3>(3, 0) = -skew<double>(ra);
+    }
+    const int nv = two ? 12 : 6;
+    const Eigen::MatrixXd kf = -ctx.rate_factor * (g * dfdv * jv).topLeftCorner(nv, nv);
+    out.stiffness.topLeftCorner(nv, nv) += kf;
   }
 
   bool planar_ = false;
