@@ -210,7 +210,8 @@ TEST(Matmap, OutsideTheTableIsRefusedOrClampedAndFlagged) {
   const Result r = run(o, logger, out);
   const auto& e = r.flaps[0].elements;
   EXPECT_EQ(e.clamped, (std::vector<std::int64_t>{0, 1, 0}));
-  const PropertyTable& yield = read_material_db(database).find("Ti-6Al-4V")->require("yield_strength");
+  const MaterialDatabase db = read_material_db(database);
+  const PropertyTable& yield = db.find("Ti-6Al-4V")->require("yield_strength");
   EXPECT_EQ(e.yield_strength[1], yield.value.back());
   EXPECT_NE(log.str().find("flap upper element 1: clamped"), std::string::npos) << log.str();
   EXPECT_EQ(r.clamped_elements, 1u);

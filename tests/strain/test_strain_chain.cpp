@@ -92,7 +92,8 @@ TEST(StrainChain, ThroughThicknessDifferenceLeavesTheSelfEquilibratedResidual) {
     // 600 K -+ 20 K stays inside one alpha_mean segment of the table (588.7-810.9 K).
     const Chain c("chain-gradient" + std::to_string(sign), 620.0, 40.0, sign);
     EXPECT_EQ(c.materials.flaps.at(0).outer_normal_sign, sign);
-    const auto& alpha = tfmb::matmap::read_material_db(database).find("Ti-6Al-4V")->require("thermal_expansion");
+    const auto db = tfmb::matmap::read_material_db(database);
+    const auto& alpha = db.find("Ti-6Al-4V")->require("thermal_expansion");
     const auto upper = std::upper_bound(alpha.temperature.begin(), alpha.temperature.end(), 620.0);
     const auto i = static_cast<std::size_t>(upper - alpha.temperature.begin());
     const double slope = (alpha.value[i] - alpha.value[i - 1]) / (alpha.temperature[i] - alpha.temperature[i - 1]);
