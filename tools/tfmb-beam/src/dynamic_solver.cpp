@@ -76,14 +76,14 @@ double DynamicSolver::potential_energy(const State& state, double time) const {
 
 DynamicResult DynamicSolver::run(const State& initial) {
   const AlphaParameters ap = alpha_parameters(options_.rho_infinity);
-  const double h = options_.time_step;
+  double h = options_.time_step;
   const int nn = assembly_.num_nodes();
   const int nj = assembly_.num_joint_dofs();
   const int nq = 6 * nn + nj;
   const Model& model = assembly_.model();
   // beta' and gamma' of FORMULATION.md sec. 3: d(acceleration)/d(increment), d(velocity)/d(increment).
-  const double bpp = (1.0 - ap.alpha_m) / ((1.0 - ap.alpha_f) * h * h * ap.beta);
-  const double gp = ap.gamma / (h * ap.beta);
+  double bpp = (1.0 - ap.alpha_m) / ((1.0 - ap.alpha_f) * h * h * ap.beta);
+  double gp = ap.gamma / (h * ap.beta);
 
   DynamicResult res;
   res.state = initial;
@@ -180,10 +180,16 @@ DynamicResult DynamicSolver::run(const State& initial) {
     }
   }
 
-  const int n_steps = static_cast<int>(std::ceil(options_.end_time / h - 1e-9));
   Eigen::VectorXd r;
   Triplets k;
-  for (int step = 0; step < n_steps; ++step) {
+  // Step-size control: a step whose Newton iteration fails is retried with half the step (contact
+  // onset, stiff friction); after four good steps the step grows back towards the nominal one.
+  const double nominal_h = h;
+  int cuts = 0, easy = 0;
+  while (t < options_.end_time * (1.0 - 1e-12)) {
+    h = std::min(nominal_h / std::pow(2.0, cuts), options_.end_time - t);
+    bpp = (1.0 - ap.alpha_m) / ((1.0 - ap.alpha_f) * h * h * ap.beta);
+    gp = ap.gamma / (h * ap.beta);
     const double t1 = t + h;
     const double lf = options_.load_function(t1);
     const State s_n = st;
@@ -263,6 +269,11 @@ DynamicResult DynamicSolver::run(const State& initial) {
     }
     if (!converged) {
       st = s_n;
+      if (++cuts <= options_.max_cutbacks) {
+        ++res.cutbacks;
+        easy = 0;
+        continue;
+      }
       res.time = t;
       res.completed = false;
       return res;
@@ -277,6 +288,10 @@ DynamicResult DynamicSolver::run(const State& initial) {
     }
     motion_.joint_rates = vel.tail(nj);
     ++res.steps;
+    if (cuts > 0 && ++easy >= 4) {
+      --cuts;
+      easy = 0;
+    }
     res.time = t;
     if (options_.on_step) options_.on_step(t, st);
   }

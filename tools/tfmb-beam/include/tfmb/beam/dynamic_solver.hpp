@@ -20,6 +20,7 @@ struct DynamicOptions {
   double end_time = 1.0;         // [s]
   double rho_infinity = 0.8;     // high-frequency spectral radius in [0, 1]
   int max_iterations = 20;
+  int max_cutbacks = 8;          // halvings of the time step after a failed Newton iteration
   double tolerance = 1e-9;       // relative residual
   /// Load multiplier as a function of time (also drives prescribed joint rotations).
   std::function<double(double)> load_function = [](double) { return 1.0; };
@@ -34,6 +35,7 @@ struct DynamicResult {
   double time = 0.0;
   int steps = 0;
   int iterations = 0;
+  int cutbacks = 0;
   State state;
 };
 
