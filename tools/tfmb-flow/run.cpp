@@ -111,7 +111,7 @@ RunResult run(const RunOptions& o, const Logger& log) {
                     o.ambient_pressure};
   std::vector<BoundaryCondition> bcs;
   bool has_inflow = false, has_farfield = false;
-  std::vector<int> outflow_curves, wall_curves;
+  std::vector<int> outflow_curves, wall_curves, inflow_curves, nozzle_wall_curves;
   for (std::size_t b = 0; b < lm.kinds.size(); ++b) {
     const std::string& kind = lm.kinds[b];
     const std::string where = o.mesh_file.string() + ": /mesh/boundaries/" + lm.mesh.boundaries[b].name;
@@ -127,6 +127,7 @@ RunResult run(const RunOptions& o, const Logger& log) {
       bc.total_temperature = o.stagnation_temperature;
       bc.flow_angle = o.inflow_angle * std::acos(-1.0) / 180.0;
       has_inflow = true;
+      inflow_curves.push_back(static_cast<int>(b));
     } else if (kind == "farfield") {
       bc.kind = BcKind::farfield;
       bc.freestream = w_inf;
@@ -136,6 +137,7 @@ RunResult run(const RunOptions& o, const Logger& log) {
       bc.static_pressure = o.ambient_pressure;
       outflow_curves.push_back(static_cast<int>(b));
     } else if (kind == "wall") {
+      nozzle_wall_curves.push_back(static_cast<int>(b));
       if (viscous) {
         bc.kind = o.wall_temperature ? BcKind::wall_isothermal : BcKind::wall_adiabatic;
         if (o.wall_temperature) bc.wall_temperature = *o.wall_temperature;
@@ -193,18 +195,35 @@ RunResult run(const RunOptions& o, const Logger& log) {
   result.report = solver.solve();
   const SolveReport& rep = result.report;
 
-  // Integrals: mass flow and gross thrust through the outflow boundaries,
-  // F = sum (rho u (u.n) + (p - p_amb) n) dS (Sutton and Biblarz 2017, eq. 2-14).
+  // Integrals. With outflow boundaries: mass flow and gross thrust through them,
+  // T = sum (rho u (u.n) + (p - p_amb) n) dS (Sutton and Biblarz 2017, eq. 2-14). Without (a
+  // nozzle discharging into a far-field plume region): the same thrust from the momentum
+  // balance of the internal flow, T = -sum over inflow and `wall` curves of
+  // (rho u (u.n) + (p - p_amb) n) dS, and the mass flow entering through the inflow.
   const double scale = lm.geometry == Geometry::axisymmetric ? 2.0 * std::acos(-1.0) : 1.0;
-  for (int b : outflow_curves) {
+  auto momentum_minus_ambient = [&](int b) {
     const BoundaryIntegral bi = solver.boundary_integral(b);
-    result.mass_flow += scale * bi.mass_flow;
-    result.thrust_x += scale * bi.force.x;
-    result.thrust_y += scale * bi.force.y;
+    Vec2 f = bi.force;
     for (const auto& face : solver.dual().boundary_faces) {
-      if (face.curve != b) continue;
-      result.thrust_x -= scale * o.ambient_pressure * face.normal.x;
-      result.thrust_y -= scale * o.ambient_pressure * face.normal.y;
+      if (face.curve == b) f = f - o.ambient_pressure * face.normal;
+    }
+    return std::pair<double, Vec2>{bi.mass_flow, f};
+  };
+  if (!outflow_curves.empty()) {
+    for (int b : outflow_curves) {
+      const auto [m, f] = momentum_minus_ambient(b);
+      result.mass_flow += scale * m;
+      result.thrust_x += scale * f.x;
+      result.thrust_y += scale * f.y;
+    }
+  } else if (!inflow_curves.empty()) {
+    for (int b : inflow_curves) result.mass_flow -= scale * momentum_minus_ambient(b).first;
+    std::vector<int> control_surface = inflow_curves;
+    control_surface.insert(control_surface.end(), nozzle_wall_curves.begin(), nozzle_wall_curves.end());
+    for (int b : control_surface) {
+      const Vec2 f = momentum_minus_ambient(b).second;
+      result.thrust_x -= scale * f.x;
+      result.thrust_y -= scale * f.y;
     }
   }
   if (o.throat_area && has_inflow) {

@@ -33,7 +33,7 @@ struct RunOptions {
 
 struct RunResult {
   SolveReport report;
-  double mass_flow = 0.0;       // through the outflow boundaries [kg/(s m)] or [kg/s]
+  double mass_flow = 0.0;       // through the outflow boundaries (else the inflow) [kg/(s m)] or [kg/s]
   double thrust_x = 0.0;        // [N/m] or [N]
   double thrust_y = 0.0;
   double discharge_coefficient = 0.0;
