@@ -7,8 +7,9 @@ Schema strain_schema() {
   Schema s{"strain", "tfmb/strain", 1, 1,
            "mechanical, thermal and total fibre strains and margins of safety", false, {}, {}};
   add_root(s, true);
-  s.attributes.push_back(sattr("/", "mechanical_basis", "how the mechanical strain was obtained",
-                               {"strain-minus-thermal", "strain", "force"}));
+  s.attributes.push_back(sattr("/", "mechanical_basis",
+                               "what the structure's sectional strain was taken as (strain.md)",
+                               {"mechanical", "kinematic", "force"}));
   s.attributes.push_back(nattr("/", "worst_margin_total", "1", "smallest total-strain margin"));
   s.attributes.push_back(nattr("/", "worst_margin_mechanical", "1", "smallest mechanical-strain margin"));
   s.attributes.push_back(nattr("/", "worst_margin_thermal", "1", "smallest thermal-strain margin"));

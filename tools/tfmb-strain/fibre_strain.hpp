@@ -8,15 +8,21 @@
 // section of thickness t centred on the reference line are at y2 = -+ s t/2, s the side of the
 // outer wall (+1: left).
 //
-// Mechanical strain, three ways of obtaining it from the beam solution:
-//   strain_minus_thermal: the beam's sectional strain is its kinematic strain, which includes
-//     the free thermal expansion (the beam was loaded with the thermal strains of
-//     materials.h5): mechanical = kinematic - thermal, fibre by fibre;
-//   strain: the beam's sectional strain is purely mechanical (the beam ignored temperature,
-//     as in the seed): mechanical = sectional strain;
-//   force: from the sectional forces and the section stiffness at temperature,
-//     gamma11 = N / EA, kappa3 = M3 / EI3 (independent of how the beam treated temperature).
-// Total = mechanical + thermal (the seed's total strain module).
+// The fibre's mechanical strain is its kinematic strain minus its free thermal expansion:
+//   mech(y2) = eps_kin(y2) - eps_th,fibre
+// with eps_th,fibre the free thermal strain at that surface (materials.h5
+// thermal_strain_inner/outer). The beam's kinematic strain is obtained, by `basis`, from
+//   mechanical (default; what tfmb-beam writes): the sectional strain is mechanical, the
+//     kinematic strain minus the section's thermal eigenstrain (thermal_strain, and
+//     kappa3_th = -outer_normal_sign thermal_curvature), so eps_kin = sectional + eigenstrain;
+//     a beam run without thermal loads (the seed) fits here too;
+//   kinematic: the sectional strain is the kinematic strain itself;
+//   force: eps_kin = N / EA + thermal_strain, kappa3 = M3 / EI3 + kappa3_th (the elastic law
+//     with the section stiffness at temperature).
+// For an elastic beam all three agree. Because eps_th,fibre is the exact free expansion and the
+// beam's eigenstrain only its linear part, the mechanical fibre strain includes the
+// self-equilibrated thermal strain a beam cannot carry (Boley & Weiner, Theory of Thermal
+// Stresses, 1960, sec. 9.3). Total = mechanical + thermal = kinematic.
 //
 // Margin of safety (Bruhn, Analysis and Design of Flight Vehicle Structures, 1973):
 //   MS = allowable / |strain| - 1, capped at kMarginCap where the strain vanishes.
@@ -26,7 +32,7 @@
 
 namespace tfmb::strain {
 
-enum class MechanicalBasis { strain_minus_thermal, strain, force };
+enum class MechanicalBasis { mechanical, kinematic, force };
 const char* basis_name(MechanicalBasis basis);
 
 inline constexpr double kMarginCap = 1e6;
@@ -49,6 +55,8 @@ struct SectionInput {
   double thickness = 0.0;        // t [m]
   int outer_normal_sign = 1;     // +1: the outer surface is at y2 = +t/2
   double thermal_inner = 0.0, thermal_outer = 0.0;  // free thermal strain at the surfaces
+  double thermal_section = 0.0;    // the section's axial thermal eigenstrain [1]
+  double thermal_curvature = 0.0;  // per unit distance towards the outer surface [1/m]
 };
 
 SectionStrains section_strains(const SectionInput& in, MechanicalBasis basis);

@@ -71,6 +71,8 @@ std::map<std::string, MaterialsFlap> read_materials(const std::filesystem::path&
     f.allowable_strain = reader.read_vector(g + "/allowable_strain", ne);
     f.thermal_strain_inner = reader.read_vector(g + "/thermal_strain_inner", ne);
     f.thermal_strain_outer = reader.read_vector(g + "/thermal_strain_outer", ne);
+    f.thermal_strain = reader.read_vector(g + "/thermal_strain", ne);
+    f.thermal_curvature = reader.read_vector(g + "/thermal_curvature", ne);
     std::vector<std::size_t> shape;
     const std::vector<double> k = reader.read_f64(g + "/section_stiffness", &shape);
     for (std::size_t e = 0; e < ne; ++e) {

@@ -32,7 +32,8 @@ struct MaterialsFlap {
   double thickness = 0.0;
   int outer_normal_sign = 1;
   std::string material;
-  std::vector<double> temperature, allowable_strain, thermal_strain_inner, thermal_strain_outer;
+  std::vector<double> temperature, allowable_strain, thermal_strain_inner, thermal_strain_outer, thermal_strain,
+      thermal_curvature;
   std::vector<double> axial_stiffness, bending_stiffness;  // EA, EI3 per element
   std::vector<std::int64_t> clamped;
 };
@@ -60,7 +61,7 @@ struct Worst {
 };
 
 struct StrainResult {
-  MechanicalBasis basis = MechanicalBasis::strain_minus_thermal;
+  MechanicalBasis basis = MechanicalBasis::mechanical;
   std::vector<FlapStrains> flaps;
   Worst worst_mechanical, worst_thermal, worst_total;
   std::vector<Worst> worst_list;  // lowest total margins, ascending

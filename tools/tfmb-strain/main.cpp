@@ -2,7 +2,7 @@
 //
 // Sample runs:
 //   tfmb-strain structure.h5 materials.h5 -o strain.h5            # + summary.json next to it
-//   tfmb-strain structure.h5 materials.h5 --mechanical force -o strain.h5 --summary s.json
+//   tfmb-strain structure.h5 materials.h5 --basis force -o strain.h5 --summary s.json
 #include <iostream>
 
 #include "run.hpp"
@@ -18,18 +18,19 @@ int main(int argc, char** argv) {
   app.add_option("materials", options.materials_file, "materials.h5: allowables, thermal strains, sections")->required();
   tfmb::cli::add_output_option(app, options.output, "strain file (tfmb/strain)");
   app.add_option("--summary", options.summary, "summary JSON (default: summary.json next to the output)");
-  std::string basis = "strain-minus-thermal";
-  app.add_option("--mechanical", basis,
-                 "how to get the mechanical strain: strain-minus-thermal (the beam's sectional strain "
-                 "includes free thermal expansion), strain (it is purely mechanical), force (N/EA and "
-                 "M/EI at temperature)")
-      ->check(CLI::IsMember({"strain-minus-thermal", "strain", "force"}))->capture_default_str();
+  std::string basis = "mechanical";
+  app.add_option("--basis", basis,
+                 "what the structure's sectional strain is: mechanical (kinematic minus the thermal "
+                 "eigenstrain of materials.h5, as tfmb-beam writes it; also a beam run without "
+                 "thermal loads), kinematic (including free thermal expansion), or force (use N/EA "
+                 "and M/EI at temperature instead)")
+      ->check(CLI::IsMember({"mechanical", "kinematic", "force"}))->capture_default_str();
   app.add_option("--worst", options.worst_count, "how many lowest total margins to list")->capture_default_str();
   options.command_line = tfmb::cli::command_line(argc, argv);
   return tfmb::cli::run_main(app, argc, argv, [&] {
-    options.basis = basis == "force"    ? tfmb::strain::MechanicalBasis::force
-                    : basis == "strain" ? tfmb::strain::MechanicalBasis::strain
-                                        : tfmb::strain::MechanicalBasis::strain_minus_thermal;
+    options.basis = basis == "force"       ? tfmb::strain::MechanicalBasis::force
+                    : basis == "kinematic" ? tfmb::strain::MechanicalBasis::kinematic
+                                           : tfmb::strain::MechanicalBasis::mechanical;
     tfmb::Logger logger("tfmb-strain", common.verbosity());
     tfmb::strain::run(options, logger, std::cout);
     return 0;

@@ -82,6 +82,8 @@ StrainResult run(const Options& options, const Logger& logger, std::ostream& out
       in.outer_normal_sign = material.outer_normal_sign;
       in.thermal_inner = material.thermal_strain_inner[e];
       in.thermal_outer = material.thermal_strain_outer[e];
+      in.thermal_section = material.thermal_strain[e];
+      in.thermal_curvature = material.thermal_curvature[e];
       const SectionStrains s = section_strains(in, options.basis);
       const double allowable = material.allowable_strain[e];
       f.element.push_back(static_cast<std::int64_t>(e));
@@ -114,7 +116,7 @@ StrainResult run(const Options& options, const Logger& logger, std::ostream& out
   all.resize(std::min<std::size_t>(all.size(), static_cast<std::size_t>(std::max(options.worst_count, 1))));
   result.worst_list = all;
 
-  out << "tfmb-strain: fibre strains and margins of safety (mechanical strain from " << basis_name(options.basis) << ")\n";
+  out << "tfmb-strain: fibre strains and margins of safety (beam strain basis: " << basis_name(options.basis) << ")\n";
   out << std::left << std::setw(12) << "flap" << std::right << std::setw(9) << "segments" << std::setw(14) << "max|mech|"
       << std::setw(14) << "max|thermal|" << std::setw(14) << "max|total|" << std::setw(12) << "MS mech" << std::setw(12)
       << "MS thermal" << std::setw(12) << "MS total" << "\n";

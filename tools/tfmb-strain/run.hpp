@@ -16,7 +16,7 @@ struct Options {
   std::filesystem::path materials_file;
   std::filesystem::path output;
   std::filesystem::path summary;  // summary.json; empty: next to the output
-  MechanicalBasis basis = MechanicalBasis::strain_minus_thermal;
+  MechanicalBasis basis = MechanicalBasis::mechanical;
   int worst_count = 5;
   std::string command_line;
 };
