@@ -4,6 +4,7 @@
 // Sample runs:
 //   tfmb-matmap thermal.h5 model.h5 --db materials-db.h5 -o materials.h5
 //   tfmb-matmap thermal.h5 model.h5 --db materials-db.h5 --clamp -o materials.h5   # flag, do not refuse
+#include <cstdlib>
 #include <iostream>
 
 #include "run.hpp"
@@ -19,10 +20,12 @@ int main(int argc, char** argv) {
   tfmb::cli::CommonOptions common;
   tfmb::cli::add_common_options(app, common);
   tfmb::matmap::Options options;
-  options.database_file = TFMB_DEFAULT_MATERIAL_DB;
+  // Default database: $TFMB_MATERIAL_DB (as tfmb-heat), else the repository's data/materials-db.h5.
+  const char* environment_db = std::getenv("TFMB_MATERIAL_DB");
+  options.database_file = environment_db && *environment_db ? environment_db : TFMB_DEFAULT_MATERIAL_DB;
   app.add_option("thermal", options.thermal_file, "thermal.h5: per beam element temperatures")->required();
   app.add_option("model", options.model_file, "model.h5: flap materials and sections")->required();
-  app.add_option("--db", options.database_file, "material database (tfmb/material-db)")->capture_default_str();
+  app.add_option("--db", options.database_file, "material database (tfmb/material-db); default $TFMB_MATERIAL_DB, else data/materials-db.h5")->capture_default_str();
   tfmb::cli::add_output_option(app, options.output, "materials file (tfmb/materials)");
   app.add_flag("--clamp", options.clamp,
                "outside a property table use its end value and flag the element (default: exit 3)");
