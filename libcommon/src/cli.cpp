@@ -39,7 +39,7 @@ CLI::Option* add_output_option(CLI::App& app, std::filesystem::path& output,
 
 CLI::Option* add_set_option(CLI::App& app, std::vector<std::string>& overrides) {
   return app.add_option("--set", overrides,
-                        "Override a case.toml setting, e.g. --set flow.npr=5.423 (repeatable)")
+                        "Override a case.toml setting, e.g. --set flow.nozzle_pressure_ratio=5.423 (repeatable)")
       ->take_all()
       ->allow_extra_args(false);
 }
