@@ -20,6 +20,7 @@ std::string to_string(BcKind kind) {
 State boundary_flux(const PerfectGas& gas, const BoundaryCondition& bc, const State& w, Vec2 n, int node,
                     double entropy_fix) {
   const double s = norm(n);
+  if (s == 0.0) return {};  // a face on the axis of an axisymmetric mesh carries no flux
   const Vec2 unit{n.x / s, n.y / s};
   switch (bc.kind) {
     case BcKind::stagnation_inflow:

@@ -6,7 +6,7 @@ namespace tfmb::flow {
 
 State viscous_flux(const PerfectGas& gas, const ViscousModel& model, Vec2 xi, Vec2 xj, const State& wi,
                    const State& wj, const std::array<double, 8>& gi, const std::array<double, 8>& gj,
-                   Vec2 n, double* jac_scale) {
+                   Vec2 n, double r_face, double* jac_scale) {
   const Vec2 d = xj - xi;
   const double length = norm(d);
   const Vec2 t{d.x / length, d.y / length};
@@ -31,7 +31,7 @@ State viscous_flux(const PerfectGas& gas, const ViscousModel& model, Vec2 xi, Ve
   const double uf = 0.5 * (wi[1] + wj[1]);
   const double vf = 0.5 * (wi[2] + wj[2]);
   // Stokes' hypothesis (Blazek 2015, eq. 2.15)
-  const double div = gu.x + gv.y;
+  const double div = gu.x + gv.y + (r_face > 0.0 ? vf / r_face : 0.0);
   const double txx = mu * (2.0 * gu.x - 2.0 / 3.0 * div);
   const double tyy = mu * (2.0 * gv.y - 2.0 / 3.0 * div);
   const double txy = mu * (gu.y + gv.x);
@@ -39,6 +39,15 @@ State viscous_flux(const PerfectGas& gas, const ViscousModel& model, Vec2 xi, Ve
   const double fy = txy * n.x + tyy * n.y;
   if (jac_scale) *jac_scale = mu * norm(n) / length;
   return {0.0, fx, fy, uf * fx + vf * fy + k * (gt.x * n.x + gt.y * n.y)};
+}
+
+double hoop_stress(const PerfectGas& gas, const ViscousModel& model, const State& w,
+                   const std::array<double, 8>& g, double r) {
+  const double mu = model.viscosity(gas.temperature(w));
+  // v/r, with its limit dv/dr on the axis (v = 0 there by symmetry)
+  const double v_over_r = r > 1e-12 ? w[2] / r : g[5];
+  const double div = g[2] + g[5] + v_over_r;
+  return mu * (2.0 * v_over_r - 2.0 / 3.0 * div);
 }
 
 Block viscous_phi_jacobian(const PerfectGas& gas, const ViscousModel& model, const State& w, double uf,

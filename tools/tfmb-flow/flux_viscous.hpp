@@ -26,11 +26,18 @@ struct ViscousModel {
 
 // Viscous flux through a face with normal n between nodes i and j (positions xi, xj, primitive
 // states wi, wj, primitive gradients gi, gj as produced by lsq_gradients). Returns the flux of
-// (0, momentum, energy) leaving node i. When jac_scale is non-null it receives the coefficient
-// c = mu |n| / L of the thin-shear approximation used in the implicit operator.
+// (0, momentum, energy) leaving node i. r_face > 0 selects the axisymmetric stresses (y = r,
+// velocity divergence with the hoop term v/r; n is then the r-weighted normal). When
+// jac_scale is non-null it receives the coefficient c = mu |n| / L of the thin-shear
+// approximation used in the implicit operator.
 State viscous_flux(const PerfectGas& gas, const ViscousModel& model, Vec2 xi, Vec2 xj, const State& wi,
                    const State& wj, const std::array<double, 8>& gi, const std::array<double, 8>& gj,
-                   Vec2 n, double* jac_scale);
+                   Vec2 n, double r_face, double* jac_scale);
+
+// Hoop stress tau_theta_theta = mu (2 v/r - 2/3 div V) at a node of an axisymmetric flow
+// (White 2006, eq. 2-29 in cylindrical coordinates); on the axis v/r -> dv/dr.
+double hoop_stress(const PerfectGas& gas, const ViscousModel& model, const State& w,
+                   const std::array<double, 8>& g, double r);
 
 // d Phi / dU for the thin-shear implicit operator F_v ~ c (Phi(U_j) - Phi(U_i)), with
 // Phi = (0, u, v, cp/Pr T + u_f u + v_f v) and (u_f, v_f) the face velocity.

@@ -73,9 +73,6 @@ FlowSolver::FlowSolver(const Mesh& mesh, Geometry geometry, const PerfectGas& ga
     throw std::invalid_argument("flow: " + std::to_string(bcs_.size()) + " boundary conditions for " +
                                 std::to_string(mesh_.boundaries.size()) + " boundary curves");
   }
-  if (settings_.viscous && geometry == Geometry::axisymmetric) {
-    throw std::invalid_argument("flow: viscous axisymmetric flow is not implemented yet");
-  }
   dual_ = build_dual(mesh_, geometry);
   lsq_ = build_lsq_gradient(dual_);
   venkat_eps_ = make_venkat_epsilon(dual_, settings_.venkat_k, settings_.reference_state);
@@ -187,6 +184,7 @@ void FlowSolver::compute_residual(bool update_limiter) {
   for (int i = 0; i < n; ++i) w_[i] = gas_.primitive(u_[i]);
 
   const bool second = settings_.order >= 2;
+  const bool axi = dual_.geometry == Geometry::axisymmetric;
   if (second || settings_.viscous) lsq_gradients(dual_, lsq_, w_, grad_);
   if (second && settings_.limiter && update_limiter) {
     if (settings_.venkat_wang > 0.0) venkat_eps_ = make_wang_epsilon(w_, settings_.venkat_wang, n);
@@ -216,7 +214,8 @@ void FlowSolver::compute_residual(bool update_limiter) {
     State f = roe_flux(gas_, wl, wr, n_e.x, n_e.y, settings_.entropy_fix);
     if (settings_.viscous) {
       const State fv = viscous_flux(gas_, settings_.viscosity, dual_.coords[i], dual_.coords[j], w_[i], w_[j],
-                                    grad_[i], grad_[j], dual_.edge_normal_planar[e], nullptr);
+                                    grad_[i], grad_[j], axi ? n_e : dual_.edge_normal_planar[e],
+                                    axi ? norm(n_e) / norm(dual_.edge_normal_planar[e]) : 0.0, nullptr);
       for (int v = 0; v < 4; ++v) f[v] -= fv[v];
     }
     edge_flux_[e] = f;
@@ -269,8 +268,15 @@ void FlowSolver::compute_residual(bool update_limiter) {
   }
 
   if (dual_.geometry == Geometry::axisymmetric) {
-    // pressure source of the radial momentum equation, integral of p dA over the dual cell
-    for (int i = 0; i < n; ++i) res_[i][2] -= w_[i][3] * dual_.area[i];
+    // source of the radial momentum equation, integral of (p - tau_theta_theta) dA over the
+    // dual cell (White 2006, eq. 2-29 in cylindrical coordinates)
+    for (int i = 0; i < n; ++i) {
+      double source = w_[i][3];
+      if (settings_.viscous) {
+        source -= hoop_stress(gas_, settings_.viscosity, w_[i], grad_[i], dual_.coords[i].y);
+      }
+      res_[i][2] -= source * dual_.area[i];
+    }
   }
 }
 
@@ -311,8 +317,10 @@ void FlowSolver::assemble_jacobian(const std::vector<double>& diag_scale) {
     roe_flux(gas_, w_[i], w_[j], n_e.x, n_e.y, settings_.entropy_fix, &jac);
     if (viscous) {
       double c = 0.0;
+      const bool axi = dual_.geometry == Geometry::axisymmetric;
       viscous_flux(gas_, settings_.viscosity, dual_.coords[i], dual_.coords[j], w_[i], w_[j], grad_[i], grad_[j],
-                   dual_.edge_normal_planar[e], &c);
+                   axi ? n_e : dual_.edge_normal_planar[e],
+                   axi ? norm(n_e) / norm(dual_.edge_normal_planar[e]) : 0.0, &c);
       const double uf = 0.5 * (w_[i][1] + w_[j][1]);
       const double vf = 0.5 * (w_[i][2] + w_[j][2]);
       // F = F_c - c (Phi_j - Phi_i)
@@ -365,6 +373,13 @@ void FlowSolver::assemble_jacobian(const std::vector<double>& diag_scale) {
       d[9] -= a * -g1 * w[1];
       d[10] -= a * -g1 * w[2];
       d[11] -= a * g1;
+      const double r = dual_.coords[i].y;
+      if (settings_.viscous && r > 1e-12) {
+        // + d(tau_theta_theta A)/dU through its 4/3 mu v / r part
+        const double k = a * 4.0 / 3.0 * settings_.viscosity.viscosity(gas_.temperature(w)) / (r * w[0]);
+        d[8] -= k * w[2];
+        d[10] += k;
+      }
     }
   }
   // Strong no-slip rows: the update of the wall velocity (and temperature) is fixed.
