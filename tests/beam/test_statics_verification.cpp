@@ -185,3 +185,57 @@ TEST(StaticsVerification, ThermalStrainAndCurvature) {
     for (const auto& st : e.stress) max_force = std::max(max_force, st.cwiseAbs().maxCoeff());
   EXPECT_LT(max_force, 1e-8);
 }
+
+// Snap-through of a shallow two-bar (von Mises) truss built from beams with pinned ends: the bars
+// carry only axial force N = EA (L - L0)/L0, so the apex load on the path is
+// P(w) = 2 EA (L0 - L)(h - w) / (L0 L), L = sqrt(a^2 + (h - w)^2). Load control stops at the limit
+// point; arc length follows the path through it to the inverted shape.
+TEST(StaticsVerification, ArcLengthThroughLimitPoint) {
+  const double a = 1.0, h = 0.2, ea = 1e4;
+  Model m;
+  m.sections.push_back(make_diagonal_section(ea, 1e4, 1e4, 10.0, 10.0, 10.0));
+  const auto left = add_beam(
+      m, 2, 0, [&](double s) { return Eigen::Vector3d(-a + a * s, h * s, 0.0); },
+      [&](double) { return Eigen::Vector3d(a, h, 0.0); });
+  const auto right = add_beam(
+      m, 2, 0, [&](double s) { return Eigen::Vector3d(a * s, h - h * s, 0.0); },
+      [&](double) { return Eigen::Vector3d(a, -h, 0.0); });
+  auto hinge = [&](const std::string& name, int na, int nb) {
+    JointSpec j;
+    j.kind = JointKind::revolute;
+    j.name = name;
+    j.node_a = na;
+    j.node_b = nb;
+    m.joints.push_back(j);
+  };
+  hinge("left support", -1, left.front());
+  hinge("right support", -1, right.back());
+  hinge("apex", left.back(), right.front());
+  add_planar_constraints(m);
+  const int apex = left.back();
+  m.nodal_loads.push_back({apex, Eigen::Vector3d(0, -1.0, 0), Eigen::Vector3d::Zero(), false});
+  Assembly asmb(m);
+  const double l0 = std::sqrt(a * a + h * h);
+  auto exact = [&](double w) {
+    const double l = std::sqrt(a * a + (h - w) * (h - w));
+    return 2.0 * ea * (l0 - l) * (h - w) / (l0 * l);
+  };
+  double worst = 0.0, w_max = 0.0, p_max = 0.0;
+  ArcLengthOptions opt;
+  opt.initial_load_increment = 5.0;
+  opt.final_load_factor = 1e9;
+  opt.max_displacement = 1.6 * h;
+  opt.on_step = [&](double p, const State& s) {
+    const double w = m.nodes[apex].position.y() - s.position[apex].y();
+    worst = std::max(worst, std::abs(p - exact(w)) / 30.0);
+    w_max = std::max(w_max, w);
+    p_max = std::max(p_max, p);
+  };
+  const StaticResult r = solve_arc_length(asmb, asmb.initial_state(), opt);
+  ASSERT_TRUE(r.converged) << "stopped at load factor " << r.load_factor;
+  EXPECT_GT(w_max, 1.5 * h);  // through the limit point and the unstable branch
+  // Load error relative to the order of the limit load (32.4 here): Newton tolerance.
+  EXPECT_LT(worst, 1e-6);
+  std::cout << "[arc length] " << r.steps << " steps, " << r.iterations << " iterations, max load " << p_max
+            << ", apex travel " << w_max << " m, worst |P - P(w)| / 30 = " << worst << "\n";
+}

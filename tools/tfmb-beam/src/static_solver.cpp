@@ -1,6 +1,7 @@
 #include "tfmb/beam/static_solver.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <limits>
 
@@ -117,6 +118,96 @@ StaticResult solve_static(const Assembly& assembly, const State& initial, const 
     }
   }
   res.converged = lf >= options.final_load_factor * (1 - 1e-14);
+  return res;
+}
+
+StaticResult solve_arc_length(const Assembly& assembly, const State& initial, const ArcLengthOptions& options) {
+  StaticResult res;
+  res.state = initial;
+  const int n = assembly.size();
+  const int nn = assembly.num_nodes();
+  NewtonLinearSolver solver([&](int i) { return assembly.dof_name(i); });
+  // Translational nodal unknowns measure the arc (Crisfield 1981, cylindrical form).
+  Eigen::VectorXd mask = Eigen::VectorXd::Zero(n);
+  for (int i = 0; i < nn; ++i) mask.segment<3>(6 * i).setOnes();
+  auto dot_t = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) { return a.cwiseProduct(mask).dot(b); };
+  Eigen::VectorXd r, r1;
+  Triplets k;
+  double scale = 0.0;
+  double lambda = 0.0, arc = 0.0;
+  Eigen::VectorXd prev_du;  // last converged step's increment (direction of travel)
+  // Reference load vector F = -dR/dlambda at a state (exact: loads are linear in lambda).
+  auto load_vector = [&](const State& s, double lf) {
+    assembly.assemble(s, lf, r, nullptr);
+    assembly.assemble(s, lf + 1.0, r1, nullptr);
+    return Eigen::VectorXd(r - r1);
+  };
+  for (int step = 0; step < options.max_steps; ++step) {
+    State trial = res.state;
+    // Predictor along the tangent.
+    assembly.assemble(trial, lambda, r, &k, &scale);
+    Eigen::VectorXd f = load_vector(trial, lambda);
+    Eigen::VectorXd uf = solver.solve(n, k, -f, assembly.step_limit());  // K uf = F (solve(-r) gives -K^-1 r)
+    if (step == 0) arc = options.initial_load_increment * std::sqrt(dot_t(uf, uf));
+    double dl = arc / std::sqrt(dot_t(uf, uf));
+    // Keep the direction of travel: past a limit point the tangent load direction reverses.
+    if (prev_du.size() > 0 && dot_t(prev_du, uf) < 0.0) dl = -dl;
+    Eigen::VectorXd du = dl * uf;
+    assembly.apply_increment(trial, du);
+    double lam = lambda + dl;
+    bool ok = false;
+    int it = 0;
+    for (; it < options.max_iterations; ++it) {
+      assembly.assemble(trial, lam, r, &k, &scale);
+      ++res.iterations;
+      if (!r.allFinite()) break;
+      if (it > 0 && r.norm() <= options.tolerance * std::max(scale, 1e-300)) {
+        ok = true;
+        break;
+      }
+      Eigen::VectorXd ur;
+      try {
+        ur = solver.solve(n, k, r, assembly.step_limit());
+      } catch (const ModelError&) {
+        break;
+      }
+      f = load_vector(trial, lam);
+      uf = solver.solve_again(f);
+      // ||du + ur + dlam uf||^2 = arc^2 on the translations.
+      const Eigen::VectorXd base = du + ur;
+      const double a1 = dot_t(uf, uf), a2 = 2.0 * dot_t(base, uf), a3 = dot_t(base, base) - arc * arc;
+      const double disc = a2 * a2 - 4.0 * a1 * a3;
+      if (disc < 0.0) break;
+      const double s1 = (-a2 + std::sqrt(disc)) / (2.0 * a1), s2 = (-a2 - std::sqrt(disc)) / (2.0 * a1);
+      // The root that keeps the increment closest to its current direction.
+      const double c1 = dot_t(base + s1 * uf, du), c2 = dot_t(base + s2 * uf, du);
+      const double dlam = c1 >= c2 ? s1 : s2;
+      const Eigen::VectorXd dx = ur + dlam * uf;
+      assembly.apply_increment(trial, dx);
+      du += dx;
+      lam += dlam;
+    }
+    if (!ok) {
+      ++res.cutbacks;
+      arc *= 0.5;
+      if (res.cutbacks > 20) return res;
+      continue;
+    }
+    prev_du = du;
+    lambda = lam;
+    res.state = std::move(trial);
+    res.load_factor = lambda;
+    ++res.steps;
+    if (options.on_step) options.on_step(lambda, res.state);
+    arc *= std::clamp(std::sqrt(static_cast<double>(options.desired_iterations) / std::max(it, 1)), 0.5, 2.0);
+    double umax = 0.0;
+    for (int i = 0; i < nn; ++i)
+      umax = std::max(umax, (res.state.position[i] - assembly.model().nodes[i].position).norm());
+    if (lambda >= options.final_load_factor || umax >= options.max_displacement) {
+      res.converged = true;
+      return res;
+    }
+  }
   return res;
 }
 

@@ -20,13 +20,15 @@ class NewtonLinearSolver {
   /// `step_limit`: a correction larger than this (infinity norm) comes from a pivot that vanished
   /// up to round-off, i.e. a singular matrix.
   Eigen::VectorXd solve(int n, const Triplets& k, const Eigen::VectorXd& r, double step_limit = 1e300);
+  /// Solves with the matrix factorised by the last solve() (another right-hand side).
+  Eigen::VectorXd solve_again(const Eigen::VectorXd& rhs) const { return lu_.solve(rhs); }
   /// Message describing the null space of a singular matrix (dense analysis; small systems only).
   std::string describe_singularity(const Eigen::SparseMatrix<double>& k) const;
 
  private:
   std::function<std::string(int)> name_of_;
   Eigen::SparseMatrix<double> matrix_;
-  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu_;
+  mutable Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu_;
   bool analysed_ = false;
   Eigen::Index pattern_nnz_ = -1;
 };

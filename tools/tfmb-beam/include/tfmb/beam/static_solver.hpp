@@ -41,6 +41,21 @@ struct StaticResult {
 /// (result.converged = false with the last converged state), throws ModelError for mechanisms.
 StaticResult solve_static(const Assembly& assembly, const State& initial, const StaticOptions& options = {});
 
+struct ArcLengthOptions {
+  double initial_load_increment = 0.05;  // first step's load-factor increment (sets the arc length)
+  double final_load_factor = 1.0;        // stop once the load factor reaches this ...
+  double max_displacement = 1e300;       // ... or any nodal displacement exceeds this [m]
+  int max_steps = 200;
+  int max_iterations = 20;
+  int desired_iterations = 5;            // the arc length adapts towards this
+  double tolerance = 1e-9;               // relative residual
+  std::function<void(double, const State&)> on_step;
+};
+
+/// Arc-length continuation (Crisfield's cylindrical arc length on the nodal translations) for
+/// paths with limit points (snap-through), where load control fails.
+StaticResult solve_arc_length(const Assembly& assembly, const State& initial, const ArcLengthOptions& options);
+
 /// One Newton solve at a fixed load factor; returns true on convergence. Updates `state`.
 bool newton_static(const Assembly& assembly, State& state, double load_factor, const StaticOptions& options,
                    int& iterations);
