@@ -28,6 +28,8 @@ int main(int argc, char** argv) {
   app.add_option("--rho-inf", options.rho_infinity, "dynamic: spectral radius at infinity of generalized-alpha [0, 1]")
       ->capture_default_str()->check(CLI::Range(0.0, 1.0));
   app.add_option("--modes", options.modes, "modal: number of modes")->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_flag("--arc-length", options.arc_length,
+               "static: arc-length continuation instead of load stepping (passes limit points; stops at the first load factor >= 1)");
   app.add_flag("--dead-loads", options.dead_loads, "apply loads.h5 forces as dead loads (default: follower, i.e. pressure turning with the wall)");
   app.add_option("--point-load", options.point_loads,
                  "dead point load at a flap end, flap:start|end:fx,fy[,mz] [N, N m]; repeatable");

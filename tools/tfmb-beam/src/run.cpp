@@ -393,7 +393,15 @@ int run(const Options& options, const Logger& log) {
       StaticOptions so;
       so.initial_steps = options.load_steps > 0 ? options.load_steps
                                                 : static_cast<int>(mf.attr_i64("/analysis", "load_steps"));
-      const StaticResult r = solve_static(*asmb, asmb->initial_state(), so);
+      StaticResult r;
+      if (options.arc_length) {
+        ArcLengthOptions ao;
+        ao.initial_load_increment = 1.0 / so.initial_steps;
+        ao.final_load_factor = 1.0;
+        r = solve_arc_length(*asmb, asmb->initial_state(), ao);
+      } else {
+        r = solve_static(*asmb, asmb->initial_state(), so);
+      }
       write_structure(options, fm, *asmb, r.state, analysis, r.converged, times, history, nullptr);
       log.summary("static: " + std::string(r.converged ? "converged" : "NOT converged") + " at load factor " +
                   std::to_string(r.load_factor) + ", " + std::to_string(r.steps) + " steps, " +

@@ -186,12 +186,32 @@ StaticResult solve_arc_length(const Assembly& assembly, const State& initial, co
       assembly.apply_increment(trial, dx);
       du += dx;
       lam += dlam;
+      // Increment criterion as in newton_static (round-off floor of stiff constraints).
+      double xmax = 1.0;
+      for (const auto& x : trial.position) xmax = std::max(xmax, x.cwiseAbs().maxCoeff());
+      const double floor = 64.0 * std::numeric_limits<double>::epsilon() * xmax * std::sqrt(static_cast<double>(n));
+      if (it > 0 && std::sqrt(dot_t(dx, dx)) <= 1e-8 * std::sqrt(dot_t(du, du)) + floor &&
+          std::abs(dlam) <= 1e-8 * std::abs(lam - lambda) + 1e-14 * std::abs(lam)) {
+        ok = true;
+        ++it;
+        break;
+      }
     }
     if (!ok) {
       ++res.cutbacks;
       arc *= 0.5;
       if (res.cutbacks > 20) return res;
       continue;
+    }
+    if (lam > options.final_load_factor && lambda < options.final_load_factor) {
+      // Crossed the target: land on it exactly with a load-controlled Newton from the last state.
+      State landing = res.state;
+      int its = 0;
+      if (newton_static(assembly, landing, options.final_load_factor, StaticOptions{}, its)) {
+        res.iterations += its;
+        trial = std::move(landing);
+        lam = options.final_load_factor;
+      }
     }
     prev_du = du;
     lambda = lam;

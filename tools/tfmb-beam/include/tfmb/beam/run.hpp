@@ -22,6 +22,7 @@ struct Options {
   double time_step = 0.0;           // dynamic [s]; 0 -> the model's
   double rho_infinity = 0.8;        // dynamic: spectral radius at infinity
   int modes = 6;                    // modal: number of modes
+  bool arc_length = false;          // static: arc-length continuation to load factor 1 (limit points)
   bool dead_loads = false;          // loads.h5 forces as dead loads (default: follower, pressure)
   /// Dead point loads "flap:start|end:fx,fy[,mz]" [N, N m] at flap ends (e.g. the seed's centre
   /// load of cases/beam-revolute); held constant in time in dynamics.
