@@ -122,7 +122,7 @@ FlapLoads map_conservative(const BeamLine& beam, const std::vector<const WallTra
 }
 
 FlapLoads map_linear(const BeamLine& beam, const std::vector<const WallTrace*>& traces,
-                     double width) {
+                     double width, const WallField* field) {
   const std::size_t n = beam.node_count();
   FlapLoads out;
   out.arc_length = beam.arc_length();
@@ -135,7 +135,13 @@ FlapLoads map_linear(const BeamLine& beam, const std::vector<const WallTrace*>& 
     }
     if (side_traces.empty()) continue;
     std::vector<WallSample> samples(n);
-    for (std::size_t i = 0; i < n; ++i) samples[i] = sample_at_node(beam, i, side_traces);
+    for (std::size_t i = 0; i < n; ++i) {
+      samples[i] = sample_at_node(beam, i, side_traces);
+      if (field && samples[i].found) {
+        const auto [p, tau] = (*field)(side, samples[i].point);
+        samples[i].traction = -p * samples[i].normal + tau * samples[i].tangent;
+      }
+    }
     for (std::size_t i = 0; i < n; ++i) {
       if (!samples[i].found) continue;
       // Ratio of wall to beam arc length around node i (chords between the wall points of
@@ -179,6 +185,8 @@ WallSample sample_at_node(const BeamLine& beam, std::size_t node,
         best.found = true;
         best.point = x;
         best.traction = trace->smooth_traction(k, u);
+        best.normal = trace->smooth_normal(k, u);
+        best.tangent = trace->normal_sign * Vec2(best.normal.y(), -best.normal.x());
       }
     }
   }
@@ -194,6 +202,8 @@ WallSample sample_at_node(const BeamLine& beam, std::size_t node,
           best.point = trace->points[e];
           const std::size_t k = e == 0 ? 0 : trace->segment_count() - 1;
           best.traction = trace->smooth_traction(k, e == 0 ? 0.0 : 1.0);
+          best.normal = trace->smooth_normal(k, e == 0 ? 0.0 : 1.0);
+          best.tangent = trace->normal_sign * Vec2(best.normal.y(), -best.normal.x());
         }
       }
     }
@@ -203,11 +213,18 @@ WallSample sample_at_node(const BeamLine& beam, std::size_t node,
 
 FlapLoads map_loads(Method method, const BeamLine& beam, const std::vector<const WallTrace*>& traces,
                     double width) {
-  FlapLoads out = method == Method::linear ? map_linear(beam, traces, width)
+  FlapLoads out = method == Method::linear ? map_linear(beam, traces, width, nullptr)
                                            : map_conservative(beam, traces, width);
   Resultant r = integrate_traces(traces);
   out.traces.force = width * r.force;
   out.traces.moment = width * r.moment;
+  out.mapped = nodal_resultant(beam, out.nodal_force, out.nodal_moment);
+  return out;
+}
+
+FlapLoads map_linear_exact(const BeamLine& beam, const std::vector<const WallTrace*>& traces, double width,
+                           const WallField& field) {
+  FlapLoads out = map_linear(beam, traces, width, &field);
   out.mapped = nodal_resultant(beam, out.nodal_force, out.nodal_moment);
   return out;
 }

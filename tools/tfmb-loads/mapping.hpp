@@ -22,6 +22,7 @@
 //   whether it uses the nodal or the distributed loads.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "beam_line.hpp"
@@ -47,6 +48,15 @@ struct FlapLoads {
 FlapLoads map_loads(Method method, const BeamLine& beam, const std::vector<const WallTrace*>& traces,
                     double width);
 
+// Pressure [Pa] and wall shear [Pa] of an analytic field at a wall point of a side.
+using WallField = std::function<std::pair<double, double>(Side, const Vec2&)>;
+
+// The linear method with the field evaluated exactly at the wall points facing the beam nodes
+// instead of interpolated in the traces (same geometry, normals and length ratios): what the
+// linear method would give with error-free traces. Used by --diff.
+FlapLoads map_linear_exact(const BeamLine& beam, const std::vector<const WallTrace*>& traces, double width,
+                           const WallField& field);
+
 // Resultant of nodal loads about the origin.
 Resultant nodal_resultant(const BeamLine& beam, const std::vector<Vec2>& force,
                           const std::vector<double>& moment);
@@ -62,6 +72,8 @@ struct WallSample {
   bool found = false;
   Vec2 point = Vec2::Zero();
   Vec2 traction = Vec2::Zero();
+  Vec2 normal = Vec2::Zero();   // out of the solid (interpolated between vertex normals)
+  Vec2 tangent = Vec2::Zero();  // along increasing trace index
 };
 WallSample sample_at_node(const BeamLine& beam, std::size_t node,
                           const std::vector<const WallTrace*>& side_traces);

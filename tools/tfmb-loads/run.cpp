@@ -102,41 +102,18 @@ void check_coverage(const BeamLine& beam, const ModelFlap& flap, Side side,
   }
 }
 
-// Reference distributed loads for --diff: the linear method on model-wall traces that carry
-// the exact function values at the points facing the beam nodes.
-FlapLoads reference_loads(const BeamLine& beam, const ModelFlap& flap, const FunctionField& f,
-                          double width) {
+// Reference distributed loads for --diff: the linear method on the same traces with the field
+// evaluated exactly at the wall points facing the beam nodes (so only the trace sampling, or for
+// the conservative method the projection, is measured), and the exact totals.
+FlapLoads reference_loads(const BeamLine& beam, const ModelFlap& flap, const FunctionField& f, double width,
+                          const std::vector<const WallTrace*>& flap_traces) {
+  FlapLoads reference = map_linear_exact(beam, flap_traces, width, [&](Side side, const Vec2& x) {
+    return std::pair{f.value("p", side, x), f.value("tau", side, x)};
+  });
   std::vector<WallTrace> traces;
   for (Side side : {Side::inner, Side::outer}) {
-    WallTrace base = model_trace(flap, side, model_wall(flap, side), [](const std::string&, const Vec2&) { return 0.0; });
-    // Insert the node-line crossings into the wall polyline.
-    std::vector<Vec2> points;
-    for (std::size_t k = 0; k < base.segment_count(); ++k) {
-      if (points.empty() || (base.points[k] - points.back()).norm() > 1e-12 * beam.length()) {
-        points.push_back(base.points[k]);
-      }
-      std::vector<double> cuts;
-      for (std::size_t i = 0; i < beam.node_count(); ++i) {
-        const double f0 = beam.node_line_distance(i, base.points[k]);
-        const double f1 = beam.node_line_distance(i, base.points[k + 1]);
-        if ((f0 < 0.0 && f1 > 0.0) || (f0 > 0.0 && f1 < 0.0)) cuts.push_back(f0 / (f0 - f1));
-      }
-      std::sort(cuts.begin(), cuts.end());
-      for (double u : cuts) {
-        const Vec2 x = base.position(k, u);
-        if ((x - points.back()).norm() > 1e-12 * beam.length()) points.push_back(x);
-      }
-    }
-    if ((base.points.back() - points.back()).norm() > 1e-12 * beam.length()) {
-      points.push_back(base.points.back());
-    } else {
-      points.back() = base.points.back();
-    }
-    traces.push_back(model_trace(flap, side, points, [&](const std::string& q, const Vec2& x) { return f.value(q, side, x); }));
+    traces.push_back(model_trace(flap, side, model_wall(flap, side), [](const std::string&, const Vec2&) { return 0.0; }));
   }
-  std::vector<const WallTrace*> pointers;
-  for (const auto& t : traces) pointers.push_back(&t);
-  FlapLoads reference = map_loads(Method::linear, beam, pointers, width);
   // Exact totals: five-point Gauss on each model wall segment cut in 64 pieces.
   Resultant exact;
   for (Side side : {Side::inner, Side::outer}) {
@@ -276,7 +253,7 @@ ForcesResult run_forces_unchecked(const ForcesOptions& options, const Logger& lo
         << l.traces.moment << std::setw(14) << l.mapped.force.x() << std::setw(14) << l.mapped.force.y()
         << std::setw(14) << l.mapped.moment << std::setw(12) << std::setprecision(3) << rel << "\n";
     if (options.diff) {
-      const FlapLoads ref = reference_loads(beam, flap, *field, flap.width);
+      const FlapLoads ref = reference_loads(beam, flap, *field, flap.width, flap_traces);
       FlapDiff d;
       for (std::size_t i = 0; i < beam.node_count(); ++i) {
         d.max_distributed_force_error = std::max(
@@ -292,8 +269,8 @@ ForcesResult run_forces_unchecked(const ForcesOptions& options, const Logger& lo
     result.loads.flaps.push_back(std::move(entry));
   }
   if (options.diff) {
-    out << "mapping error against the function (reference: exact values at the wall points facing "
-           "the beam nodes; exact totals by 5-point Gauss)\n";
+    out << "mapping error against the function (reference: the field's exact values at the wall "
+           "points facing the beam nodes; exact totals by 5-point Gauss on the model walls)\n";
     for (std::size_t f = 0; f < result.diffs.size(); ++f) {
       const FlapDiff& d = result.diffs[f];
       out << "  " << result.loads.flaps[f].name << ": max |q - q_exact| = " << std::setprecision(4)

@@ -24,13 +24,17 @@ Vec2 WallTrace::traction(std::size_t k, double u) const {
   return -p * outward_normal(k) + tau * unit_tangent(k);
 }
 
-Vec2 WallTrace::smooth_traction(std::size_t k, double u) const {
+Vec2 WallTrace::smooth_normal(std::size_t k, double u) const {
   auto vertex_normal = [&](std::size_t v) {
     if (v == 0) return outward_normal(0);
     if (v == points.size() - 1) return outward_normal(v - 1);
     return Vec2((outward_normal(v - 1) + outward_normal(v)).normalized());
   };
-  const Vec2 n = ((1.0 - u) * vertex_normal(k) + u * vertex_normal(k + 1)).normalized();
+  return ((1.0 - u) * vertex_normal(k) + u * vertex_normal(k + 1)).normalized();
+}
+
+Vec2 WallTrace::smooth_traction(std::size_t k, double u) const {
+  const Vec2 n = smooth_normal(k, u);
   // The tangent along increasing index is the normal turned back by 90 degrees.
   const Vec2 e = normal_sign * Vec2(n.y(), -n.x());
   const double p = (1.0 - u) * pressure[k] + u * pressure[k + 1];

@@ -42,6 +42,8 @@ struct WallTrace {
   // direction error drops from O(h) to O(h^2). Used where a traction is sampled at a point
   // (the linear method); integrals use the exact piecewise-constant normal.
   Vec2 smooth_traction(std::size_t k, double u) const;
+  // The interpolated unit normal used by smooth_traction (out of the solid).
+  Vec2 smooth_normal(std::size_t k, double u) const;
   Vec2 position(std::size_t k, double u) const { return points[k] + u * (points[k + 1] - points[k]); }
 };
 
