@@ -18,9 +18,9 @@ int main(int argc, char** argv) {
   tfmb::heat::Options options;
   tfmb::cli::CommonOptions common;
   tfmb::cli::add_common_options(app, common);
-  app.add_option("solidmesh", options.solid_mesh, "Solid mesh of the flap walls (tfmb/solidmesh)")->required()->check(CLI::ExistingFile);
-  app.add_option("flow", options.flow, "Flow solution with wall traces (tfmb/flow)")->required()->check(CLI::ExistingFile);
-  app.add_option("model", options.model, "Analysis model (tfmb/model): flap materials, /thermal settings")->required()->check(CLI::ExistingFile);
+  app.add_option("solidmesh", options.solid_mesh, "Solid mesh of the flap walls (tfmb/solidmesh)")->required();
+  app.add_option("flow", options.flow, "Flow solution with wall traces (tfmb/flow)")->required();
+  app.add_option("model", options.model, "Analysis model (tfmb/model): flap materials, /thermal settings")->required();
   app.add_option("--db", options.material_db, "Material database (tfmb/material-db); default $TFMB_MATERIAL_DB");
   tfmb::cli::add_output_option(app, options.output, "thermal file (tfmb/thermal)");
   app.add_option("--environment-temperature", options.environment_temperature,
