@@ -276,7 +276,7 @@ void write_structure_xdmf(const std::filesystem::path& h5file, std::size_t n_poi
 
 void write_structure(const Options& options, const FileModel& fm, const Assembly& asmb, const State& state,
                      const std::string& analysis, bool converged, const std::vector<double>& times,
-                     const std::vector<std::vector<Eigen::Vector3d>>& history, const Eigen::VectorXd* frequencies) {
+                     const std::vector<std::vector<Eigen::Vector3d>>& history, const ModalResult* modes) {
   const Model& m = fm.model;
   h5::Writer w(options.output);
   formats::Header header;
@@ -351,9 +351,18 @@ void write_structure(const Options& options, const FileModel& fm, const Assembly
         for (int c = 0; c < 3; ++c) flat.push_back(snap[i](c) - m.nodes[i].position(c));
     w.write_array("/history/displacement", flat, {times.size(), static_cast<size_t>(n), 3}, "m");
   }
-  if (frequencies) {
-    std::vector<double> fr(frequencies->data(), frequencies->data() + frequencies->size());
-    w.write("/modes/frequency", fr, "Hz", "natural frequencies about the reference state");
+  if (modes) {
+    const Eigen::VectorXd& f = modes->frequencies_hz;
+    w.write("/modes/frequency", std::vector<double>(f.data(), f.data() + f.size()), "Hz",
+            "natural frequencies about the reference state");
+    std::vector<double> shapes;
+    for (Eigen::Index k = 0; k < f.size(); ++k) {
+      const double peak = modes->mode_shapes.col(k).cwiseAbs().maxCoeff();
+      for (Eigen::Index i = 0; i < n; ++i)
+        for (int c = 0; c < 3; ++c) shapes.push_back(modes->mode_shapes(6 * i + c, k) / (peak > 0 ? peak : 1.0));
+    }
+    w.write_array("/modes/displacement", shapes, {static_cast<size_t>(f.size()), static_cast<size_t>(n), 3}, "1",
+                  "nodal translations of each mode, divided by the largest entry of the mode vector");
   }
   formats::Provenance prov;
   prov.command_line = options.command_line;
@@ -426,7 +435,7 @@ int run(const Options& options, const Logger& log) {
       if (!r.completed) throw NotConverged("Newton failed at t = " + std::to_string(r.time) + " s");
     } else {
       const ModalResult r = modal_analysis(*asmb, asmb->initial_state(), options.modes);
-      write_structure(options, fm, *asmb, asmb->initial_state(), analysis, true, times, history, &r.frequencies_hz);
+      write_structure(options, fm, *asmb, asmb->initial_state(), analysis, true, times, history, &r);
       std::ostringstream s;
       s << "modal: first frequencies [Hz]:";
       for (Eigen::Index i = 0; i < r.frequencies_hz.size(); ++i) s << " " << r.frequencies_hz(i);
