@@ -44,7 +44,7 @@ struct SolverSettings {
   // Reference density residual for the drop (0: the largest residual of this run). A restart
   // passes the reference of the run it continues, so a converged state stays converged.
   double residual_reference = 0.0;
-  double linear_tolerance = 0.05; // relative, per nonlinear iteration
+  double linear_tolerance = 0.02; // relative, per nonlinear iteration
   int gmres_restart = 20;
   // ILU(0) partitions (independent row ranges, see BlockIlu0): 2 lets two threads share the
   // preconditioner; the same value gives the same result on any number of threads.
