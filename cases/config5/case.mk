@@ -1,0 +1,11 @@
+# config5 (seed Table 3): realistic nozzle, two-way, the throat joint of each half a revolute
+# joint with a torsional spring of 100 N m/rad instead of a restraint (see README.md for why the
+# lip joints stay restrained in a static analysis).
+CASE_TOML = cases/realistic-nozzle/case.toml
+ANALYSIS = twoway
+SET += --set analysis.kind=twoway \
+       --set joint.upper_throat.kind=revolute_spring --set joint.upper_throat.stiffness=100 \
+       --set joint.lower_throat.kind=revolute_spring --set joint.lower_throat.stiffness=100
+# Flow conditions of every configuration: the seed's NPR 5.423 and a stagnation temperature that
+# the Ti-6Al-4V strength tables cover (yield and ultimate strength to 810.9 K).
+SET += --set flow.nozzle_pressure_ratio=5.423 --set flow.stagnation_temperature=750
