@@ -32,6 +32,8 @@ State boundary_flux(const PerfectGas& gas, const BoundaryCondition& bc, const St
     case BcKind::pressure_outflow:
       return roe_flux(gas, w, outflow_state(gas, bc.static_pressure, w, unit), n.x, n.y, entropy_fix);
     case BcKind::slip_wall:
+      if (!bc.riemann_wall) return {0.0, w[3] * n.x, w[3] * n.y, 0.0};
+      [[fallthrough]];
     case BcKind::symmetry: {
       // Riemann problem against the mirror state (normal velocity reversed): no mass or energy
       // crosses, and the wall pressure is the acoustic one, p - rho c V.n (Blazek 2015,
