@@ -192,12 +192,16 @@ int run(const Options& options, const Logger& log) {
       if (wall.flap == boundary.flap && wall.side == side) match = &wall;
     }
     if (!match) {
-      if (side == "inner") {
-        flow.fail("/walls", "no wall trace for flap '" + boundary.flap + "' side inner, needed by solid wall '" +
+      // A side facing a closed cavity (e.g. the inner side of an external flap) has no trace and
+      // is taken adiabatic; a flap the flow touches nowhere is an error (wrong flow file?).
+      bool flap_wetted = false;
+      for (const auto& wall : flow_walls) flap_wetted |= wall.flap == boundary.flap;
+      if (!flap_wetted) {
+        flow.fail("/walls", "no wall trace for flap '" + boundary.flap + "' on any side, needed by solid wall '" +
                                 name + "' of " + options.solid_mesh.string());
       }
-      log.info("solid wall '" + name + "': no flow trace on the outer side, adiabatic" +
-               std::string(solid_boundary == "convection_radiation" ? " plus radiation" : ""));
+      log.warn("solid wall '" + name + "': no flow trace on the " + side + " side, adiabatic" +
+               std::string(solid_boundary == "convection_radiation" && side == "outer" ? " plus radiation" : ""));
     } else {
       const auto x = trace_values(flow, match->name, "x", needed_by);
       const auto y = trace_values(flow, match->name, "y", needed_by);

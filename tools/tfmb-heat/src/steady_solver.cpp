@@ -9,18 +9,29 @@
 
 namespace tfmb::heat {
 
+struct NewtonWorkspace::Impl {
+  Eigen::SparseMatrix<double> tangent;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+  bool lu_analysed = false, ldlt_analysed = false;
+};
+
+NewtonWorkspace::NewtonWorkspace() : impl_(std::make_unique<Impl>()) {}
+NewtonWorkspace::~NewtonWorkspace() = default;
+
 NewtonReport newton_solve(const Assembler& assembler, const TimeTerm& time_term,
-                          const NewtonSettings& settings, Eigen::VectorXd& t) {
+                          const NewtonSettings& settings, Eigen::VectorXd& t,
+                          NewtonWorkspace& workspace) {
   NewtonReport report;
+  auto& ws = workspace.impl();
   const Eigen::VectorXd& dirichlet = assembler.dirichlet_values();
   for (Eigen::Index d = 0; d < t.size(); ++d) {
     if (!std::isnan(dirichlet[d])) t[d] = dirichlet[d];
   }
   Eigen::VectorXd residual, update;
-  Eigen::SparseMatrix<double> tangent;
-  // The pattern is fixed, so the symbolic analysis is done once per solve.
-  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+  auto& tangent = ws.tangent;
+  auto& lu = ws.lu;
+  auto& ldlt = ws.ldlt;
   for (int iteration = 1; iteration <= settings.max_iterations; ++iteration) {
     auto clock = std::chrono::steady_clock::now();
     assembler.assemble(t, time_term, residual, &tangent, settings.tangent);
@@ -31,7 +42,8 @@ NewtonReport newton_solve(const Assembler& assembler, const TimeTerm& time_term,
     }
     report.residual_norm.push_back(residual.lpNorm<Eigen::Infinity>());
     if (settings.tangent == Tangent::consistent) {
-      if (iteration == 1) lu.analyzePattern(tangent);
+      // The pattern is fixed, so the symbolic analysis is done once per workspace.
+      if (!ws.lu_analysed) lu.analyzePattern(tangent), ws.lu_analysed = true;
       lu.factorize(tangent);
       if (lu.info() != Eigen::Success) {
         throw std::runtime_error("Newton: sparse LU factorisation failed (" + lu.lastErrorMessage() +
@@ -39,7 +51,7 @@ NewtonReport newton_solve(const Assembler& assembler, const TimeTerm& time_term,
       }
       update = lu.solve(-residual);
     } else {
-      if (iteration == 1) ldlt.analyzePattern(tangent);
+      if (!ws.ldlt_analysed) ldlt.analyzePattern(tangent), ws.ldlt_analysed = true;
       ldlt.factorize(tangent);
       if (ldlt.info() != Eigen::Success) {
         throw std::runtime_error("Newton: sparse LDLT factorisation failed");
@@ -67,7 +79,8 @@ SteadyResult solve_steady(const ThermalProblem& problem, double initial_temperat
   Eigen::VectorXd t = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(assembler.dof_count()),
                                                 initial_temperature);
   SteadyResult result;
-  result.newton = newton_solve(assembler, TimeTerm{}, settings, t);
+  NewtonWorkspace workspace;
+  result.newton = newton_solve(assembler, TimeTerm{}, settings, t, workspace);
   if (result.newton.converged) assembler.check_temperature_range(t);
   result.temperature = assembler.to_nodes(t);
   return result;

@@ -33,6 +33,7 @@ TransientResult solve_transient(const ThermalProblem& problem,
   assembler.check_temperature_range(assembler.to_dofs(initial_temperature));
 
   TransientResult result;
+  NewtonWorkspace workspace;
   Eigen::VectorXd t_now = assembler.to_dofs(initial_temperature);
   Eigen::VectorXd t_previous = t_now;
   Eigen::VectorXd history(t_now.size()), t_new;
@@ -64,7 +65,7 @@ TransientResult solve_transient(const ThermalProblem& problem,
     }
     term.history = &history;
     t_new = t_now;
-    const NewtonReport report = newton_solve(assembler, term, settings.newton, t_new);
+    const NewtonReport report = newton_solve(assembler, term, settings.newton, t_new, workspace);
     result.newton_iterations += report.iterations;
     const double change = (t_new - t_now).lpNorm<Eigen::Infinity>();
     const bool too_large = settings.adaptive && change > 2.0 * settings.target_temperature_change;
