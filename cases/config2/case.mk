@@ -5,7 +5,8 @@
 CASE_TOML = cases/simple-nozzle/case.toml
 ANALYSIS = twoway
 SET += --set joint.upper_12.kind=revolute_clearance --set joint.upper_12.inner_radius=0.004 \
-       --set joint.upper_12.outer_radius=0.0042 --set analysis.kind=twoway
+       --set joint.upper_12.outer_radius=0.0042 --set analysis.kind=twoway \
+       --set analysis.time=dynamic --set analysis.end_time=0.01 --set analysis.time_step=0.0005
 # Flow conditions of every configuration: the seed's NPR 5.423 and a stagnation temperature that
 # the Ti-6Al-4V strength tables cover (yield and ultimate strength to 810.9 K).
 SET += --set flow.nozzle_pressure_ratio=5.423 --set flow.stagnation_temperature=750
