@@ -66,8 +66,14 @@ Model read_model(const std::filesystem::path& file) {
   return model;
 }
 
-FlowTraces read_flow_traces(const std::filesystem::path& file) {
+FlowTraces read_flow_traces(const std::filesystem::path& file,
+                            const std::filesystem::path& reference_mesh) {
   const h5::Reader reader = formats::open_checked(file, "flow");
+  h5::MatrixXdR reference_points;
+  if (!reference_mesh.empty()) {
+    const h5::Reader reference = formats::open_checked(reference_mesh, "flowmesh");
+    reference_points = reference.read_matrix("/mesh/points", std::nullopt, 2);
+  }
   FlowTraces out;
   out.header = formats::read_header(reader);
   const h5::MatrixXiR triangles = reader.read_index_matrix("/mesh/cells/triangle", std::nullopt, 3, 0,
@@ -146,6 +152,16 @@ FlowTraces read_flow_traces(const std::filesystem::path& file) {
     }
     if (vote == 0.0) reader.fail(g, "cannot tell on which side of the wall the fluid is");
     trace.normal_sign = vote > 0.0 ? 1.0 : -1.0;
+    if (reference_points.rows() > 0) {
+      if (reference_points.rows() != node_count) {
+        reader.fail("/mesh/points", std::to_string(node_count) + " nodes, but the reference mesh " +
+                                        reference_mesh.string() + " has " +
+                                        std::to_string(reference_points.rows()) + " (not the same topology)");
+      }
+      for (std::size_t k = 0; k < nodes.size(); ++k) {
+        trace.points[k] = Vec2(reference_points(nodes[k], 0), reference_points(nodes[k], 1));
+      }
+    }
     out.traces.push_back(std::move(trace));
   }
   return out;

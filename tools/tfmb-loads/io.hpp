@@ -45,7 +45,11 @@ struct FlowTraces {
   std::vector<WallTrace> traces;
   std::vector<std::string> skipped;  // wall traces without a flap
 };
-FlowTraces read_flow_traces(const std::filesystem::path& file);
+// With `reference_mesh` (the undeformed flowmesh of a two-way run, same topology), the trace
+// points are taken at their nodes' reference positions: the loads of a deformed wall are mapped
+// onto the undeformed beam, where tfmb-beam applies them (as follower loads).
+FlowTraces read_flow_traces(const std::filesystem::path& file,
+                            const std::filesystem::path& reference_mesh = {});
 
 // Wall points of flap walls from a mesh-bearing file (flowmesh or flow): per boundary with a
 // `flap` attribute, its nodes in edge order.

@@ -39,6 +39,9 @@ int main(int argc, char** argv) {
   f->add_option("--coverage-tolerance", forces.coverage_tolerance,
                 "largest uncovered stretch of a flap side, relative to the flap length")
       ->capture_default_str();
+  f->add_option("--reference-mesh", forces.reference_mesh,
+                "undeformed flowmesh.h5 of a two-way run: map the traces of the deformed walls "
+                "from their nodes' reference positions onto the undeformed beam");
   f->add_option("--missing-side-pressure", missing_pressure,
                 "[Pa] uniform pressure on a flap side that has no trace (default: error)");
 

@@ -162,7 +162,7 @@ ForcesResult run_forces_unchecked(const ForcesOptions& options, const Logger& lo
     }
   } else {
     source = options.flow_file.string();
-    FlowTraces flow = read_flow_traces(options.flow_file);
+    FlowTraces flow = read_flow_traces(options.flow_file, options.reference_mesh);
     result.loads.header = flow.header;
     traces = std::move(flow.traces);
     for (const auto& name : flow.skipped) logger.verbose("wall trace " + name + " belongs to no flap; not mapped");

@@ -28,6 +28,7 @@ struct ForcesOptions {
   bool diff = false;                 // report the mapping error against `function`
   double coverage_tolerance = 1e-3;  // relative to the flap length
   std::optional<double> missing_side_pressure;  // [Pa] for a flap side without traces
+  std::filesystem::path reference_mesh;  // two-way: undeformed flowmesh (see read_flow_traces)
   std::string command_line;
 };
 
