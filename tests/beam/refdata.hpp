@@ -11,8 +11,7 @@
 namespace beam_test {
 
 inline std::string refdata_dir() {
-  // The shared reference data live outside the repository on the build machine.
-  return "/work/shared/refdata/beam";
+  return std::string(TFMB_SOURCE_DIR) + "/refdata/beam";
 }
 
 /// Columns by header name; non-numeric fields become NaN, raw strings are kept in `text`.

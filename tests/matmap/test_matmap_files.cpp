@@ -90,7 +90,7 @@ TEST(MaterialDb, CommittedDatabaseIsValidAndComplete) {
 
 // The committed database is what the builder makes from the reference CSVs today.
 TEST(MaterialDb, CommittedDatabaseMatchesARebuild) {
-  const std::filesystem::path refdata = "/work/shared/refdata/materials";
+  const std::filesystem::path refdata = std::filesystem::path(TFMB_SOURCE_DIR) / "refdata" / "materials";
   if (!std::filesystem::exists(refdata)) GTEST_SKIP() << "refdata not on this machine";
   const auto dir = tf::temp_dir("rebuild");
   const auto rebuilt = dir / "materials-db.h5";

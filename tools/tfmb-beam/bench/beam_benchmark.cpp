@@ -4,7 +4,7 @@
 //
 // Sample runs:
 //   build/bin/tfmb-beam-benchmark
-//   build/bin/tfmb-beam-benchmark --ccx-input /work/shared/refdata/beam/calculix/bend45_16el.inp
+//   build/bin/tfmb-beam-benchmark --ccx-input refdata/beam/calculix/bend45_16el.inp
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -92,7 +92,7 @@ bool run_calculix(const std::string& input, double& seconds, Eigen::Vector3d& di
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string ccx_input = "/work/shared/refdata/beam/calculix/bend45_16el.inp";
+  std::string ccx_input = "refdata/beam/calculix/bend45_16el.inp";
   int big = 1000;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
