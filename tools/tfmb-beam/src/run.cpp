@@ -1,5 +1,6 @@
 #include "tfmb/beam/run.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <cmath>
@@ -405,7 +406,7 @@ int run(const Options& options, const Logger& log) {
       StaticResult r;
       if (options.arc_length) {
         ArcLengthOptions ao;
-        ao.initial_load_increment = 1.0 / so.initial_steps;
+        ao.initial_load_increment = 1.0 / std::max(so.initial_steps, 1);
         ao.final_load_factor = 1.0;
         r = solve_arc_length(*asmb, asmb->initial_state(), ao);
       } else {
