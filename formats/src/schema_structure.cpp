@@ -4,7 +4,7 @@
 namespace tfmb::formats::detail {
 
 Schema structure_schema() {
-  Schema s{"structure", "tfmb/structure", 1, 0,
+  Schema s{"structure", "tfmb/structure", 1, 1,
            "beam solution: displacements, rotations, sectional strains and forces, joints",
            false, {}, {}};
   add_root(s, true);
@@ -29,6 +29,9 @@ Schema structure_schema() {
   s.datasets.push_back(f64("/joints/*/gap", {"*"}, "m", "clearance joints", false));
   s.datasets.push_back(f64("/history/time", {"T"}, "s", "dynamic analysis", false));
   s.datasets.push_back(f64("/history/displacement", {"T", "N", "3"}, "m", "", false));
+  s.datasets.push_back(f64("/modes/frequency", {"M"}, "Hz", "modal analysis: natural frequencies", false));
+  s.datasets.push_back(f64("/modes/displacement", {"M", "N", "3"}, "1",
+                           "nodal translations of each mode, divided by its largest entry", false));
   add_provenance(s);
   return s;
 }
