@@ -44,8 +44,7 @@ double wall_radius_in(double x) {
 
 std::vector<std::array<double, 2>> read_reference() {
   const std::vector<std::filesystem::path> candidates = {
-      std::filesystem::path(TFMB_SOURCE_DIR) / "refdata/flow/bmg_conical_nozzle_wall_p_gdtk.csv",
-      std::filesystem::path(TFMB_SOURCE_DIR) / "../shared/refdata/flow/bmg_conical_nozzle_wall_p_gdtk.csv"};
+      std::filesystem::path(TFMB_SOURCE_DIR) / "refdata/flow/bmg_conical_nozzle_wall_p_gdtk.csv"};
   std::vector<std::array<double, 2>> data;  // x [in], p/pt
   for (const auto& path : candidates) {
     std::ifstream in(path);
