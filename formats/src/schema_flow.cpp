@@ -4,7 +4,7 @@
 namespace tfmb::formats::detail {
 
 Schema flow_schema() {
-  Schema s{"flow", "tfmb/flow", 1, 0,
+  Schema s{"flow", "tfmb/flow", 1, 1,
            "flow solution: node fields, wall traces, integrated thrust and mass flow", true, {}, {}};
   add_root(s, true);
   add_mesh(s);
@@ -43,6 +43,10 @@ Schema flow_schema() {
   s.attributes.push_back(sattr("/convergence", "criterion", "convergence criterion used"));
   s.attributes.push_back(nattr("/convergence", "iterations", "1", "nonlinear iterations", 0.0,
                                std::nullopt, true, AttrType::int64));
+  s.attributes.push_back(nattr("/convergence", "residual_reference", "1",
+                               "largest density residual of the run, the reference of the drop; a "
+                               "restart continues from it",
+                               0.0, std::nullopt, false));
   s.datasets.push_back(f64("/convergence/residual_history", {"I", "*"}, "1",
                            "per iteration: L2 residual of each equation relative to the first"));
   add_provenance(s);

@@ -4,7 +4,7 @@
 namespace tfmb::formats::detail {
 
 Schema thermal_schema() {
-  Schema s{"thermal", "tfmb/thermal", 1, 0,
+  Schema s{"thermal", "tfmb/thermal", 1, 1,
            "solid temperatures and per beam element mean temperature and through-thickness "
            "difference",
            true, {}, {}};
@@ -16,6 +16,11 @@ Schema thermal_schema() {
   s.datasets.push_back(f64("/beam/*/delta_temperature", {"ne"}, "K",
                            "outer minus inner surface temperature of the linear fit through the "
                            "thickness"));
+  s.attributes.push_back(nattr("/convergence", "converged", "1", "1 if Newton met its tolerance",
+                               0.0, 1.0, false, AttrType::int64));
+  s.attributes.push_back(sattr("/convergence", "criterion", "convergence criterion used", {}, false));
+  s.attributes.push_back(nattr("/convergence", "iterations", "1", "Newton iterations", 0.0,
+                               std::nullopt, false, AttrType::int64));
   add_provenance(s);
   return s;
 }
