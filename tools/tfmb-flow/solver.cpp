@@ -426,6 +426,8 @@ SolveReport FlowSolver::solve() {
   double r_max = settings_.residual_reference;
   double r_min = std::numeric_limits<double>::infinity();
   int last_minimum = 0;
+  double cfl_ceiling = settings_.cfl_max;
+  int last_progress = 0;  // last new minimum or last ceiling cut
   limiter_frozen_ = false;
 
   for (int it = 1; it <= settings_.max_iterations; ++it) {
@@ -440,6 +442,7 @@ SolveReport FlowSolver::solve() {
       if (report.backoffs > 20) break;
       continue;
     }
+    if (rnorm[0] > r_max) last_progress = it;  // still in the start-up transient
     r_max = std::max(r_max, rnorm[0]);
     // (a start with no density residual at all, e.g. fluid at rest behind a pressure jump,
     // has no reference yet)
@@ -447,6 +450,12 @@ SolveReport FlowSolver::solve() {
     if (rnorm[0] < r_min) {
       r_min = rnorm[0];
       last_minimum = it;
+      last_progress = it;
+    }
+    if (settings_.cfl_stall_iterations > 0 && it - last_progress > settings_.cfl_stall_iterations) {
+      // only a stall at (near) the ceiling is a large-CFL limit cycle; a low CFL is SER's doing
+      if (cfl >= 0.5 * cfl_ceiling) cfl_ceiling = std::max(0.5 * cfl_ceiling, settings_.cfl_start);
+      last_progress = it;
     }
     if ((settings_.limiter_freeze_drop > 0.0 && report.residual_drop < settings_.limiter_freeze_drop) ||
         (settings_.limiter_stall_iterations > 0 && it - last_minimum > settings_.limiter_stall_iterations)) {
@@ -463,7 +472,7 @@ SolveReport FlowSolver::solve() {
         const bool healthy = last_omega >= 1.0 && rnorm[0] <= settings_.cfl_adaptive_residual_rise * r_previous;
         adaptive = healthy ? cfl * settings_.cfl_adaptive_growth : cfl * 0.7;
       }
-      cfl = std::min({std::max(ser, adaptive), cfl * settings_.cfl_growth, settings_.cfl_max});
+      cfl = std::min({std::max(ser, adaptive), cfl * settings_.cfl_growth, cfl_ceiling});
       cfl = std::max(cfl, 1e-3);
     }
     r_previous = rnorm[0];
@@ -517,11 +526,22 @@ SolveReport FlowSolver::solve() {
       double omega_i = 1.0;
       if (!std::isfinite(change)) omega_i = 0.0;
       else if (change > settings_.max_relative_update) omega_i = settings_.max_relative_update / change;
-      for (int v = 0; v < 4; ++v) un[v] = u_[i][v] + omega_i * du[4 * i + v];
-      const double p_new = (gas_.gamma - 1.0) * (un[3] - 0.5 * (un[1] * un[1] + un[2] * un[2]) / un[0]);
-      if (!(un[0] > 0.0) || !(p_new > 0.0)) {
-        omega_i = 0.0;
-        un = u_[i];
+      // The primitive change is not linear in omega (kinetic energy): halve omega until the
+      // relaxed state is physical and within the allowed change, rather than freezing the node
+      // (a frozen node near a near-vacuum lip corner never recovers, its residual grows and the
+      // SER ramp then collapses the CFL everywhere).
+      for (int halving = 0;; ++halving) {
+        for (int v = 0; v < 4; ++v) un[v] = u_[i][v] + omega_i * du[4 * i + v];
+        const double p_new = (gas_.gamma - 1.0) * (un[3] - 0.5 * (un[1] * un[1] + un[2] * un[2]) / un[0]);
+        const bool ok = un[0] > 0.0 && p_new > 0.0 &&
+                        std::abs(p_new - wo[3]) <= 2.0 * settings_.max_relative_update * wo[3];
+        if (ok) break;
+        if (halving == 12 || omega_i == 0.0) {
+          omega_i = 0.0;
+          un = u_[i];
+          break;
+        }
+        omega_i *= 0.5;
       }
       u_[i] = un;
       if (omega_i < 1.0) ++limited;

@@ -39,6 +39,11 @@ struct SolverSettings {
   // otherwise multiply by 0.7. The larger of the two laws wins. 0 or 1: SER only.
   double cfl_adaptive_growth = 1.5;
   double cfl_adaptive_residual_rise = 2.0;
+  // Halve the CFL ceiling whenever the density residual has not reached a new minimum for this
+  // many iterations (0: never). At large CFL the frozen-dissipation Jacobian is not the true
+  // one, and on a jet into air at rest the Newton-like iteration can settle into a limit cycle
+  // (residual oscillating at a constant level, updates taken whole) that no relaxation sees.
+  int cfl_stall_iterations = 20;
   int max_iterations = 500;
   double residual_drop = 1e-8;    // converged when the density residual fell by this factor
   // Reference density residual for the drop (0: the largest residual of this run). A restart

@@ -1,0 +1,118 @@
+// Regression: a sonic jet from a straight planar duct discharging into air at rest (half plane,
+// symmetry below, far field left and above, pressure outflow right), NPR 5.4, first order: the
+// plume topology of the nozzle cases (plenum + nozzle + external region) in a small mesh.
+// The coarse mesh converges (also before the CFL ceiling cut of solve(), which the config3 mesh
+// needs: see README). The finer one reproduces, in 1.4 s, the failure still open on the full
+// config3 mesh: node updates relaxed to omega -> 0 near the jet boundary, CFL collapse.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "solver.hpp"
+
+using namespace tfmb::flow;
+
+namespace {
+
+// Nodes (i, j) of an ni x nj grid; the duct wall is the one row of cells j = j_wall, i < i_exit,
+// removed from the grid (a plate of finite thickness with a blunt trailing edge).
+struct PlumeMesh {
+  Mesh mesh;
+  int ni = 0, nj = 0;
+};
+
+PlumeMesh plume_mesh(int n_duct, int n_plume, int n_in, double plate_top, double x_growth, double dy0) {
+  // x: duct 0..1 (uniform), plume 1..6 (stretched); y: duct 0..0.5, plate 0.5..0.52, air above
+  std::vector<double> xs, ys;
+  for (int i = 0; i <= n_duct; ++i) xs.push_back(static_cast<double>(i) / n_duct);
+  double dx = 1.0 / n_duct;
+  for (int i = 0; i < n_plume; ++i) {
+    dx *= x_growth;
+    xs.push_back(xs.back() + dx);
+  }
+  for (int j = 0; j <= n_in; ++j) ys.push_back(0.5 * j / n_in);
+  ys.push_back(plate_top);
+  double dy = dy0;
+  while (ys.back() < 4.0) {
+    dy *= 1.12;
+    ys.push_back(ys.back() + dy);
+  }
+  PlumeMesh pm;
+  pm.ni = static_cast<int>(xs.size());
+  pm.nj = static_cast<int>(ys.size());
+  const int ni = pm.ni, nj = pm.nj, i_exit = n_duct, j_wall = n_in;
+  Mesh& m = pm.mesh;
+  auto id = [&](int i, int j) { return j * ni + i; };
+  for (int j = 0; j < nj; ++j) {
+    for (int i = 0; i < ni; ++i) m.points.push_back({xs[i], ys[j]});
+  }
+  for (int j = 0; j + 1 < nj; ++j) {
+    for (int i = 0; i + 1 < ni; ++i) {
+      if (j == j_wall && i < i_exit) continue;
+      const std::array<int, 4> q{id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)};
+      if ((i + 2 * j) % 5 == 0) {
+        m.triangles.push_back({q[0], q[1], q[2]});
+        m.triangles.push_back({q[0], q[2], q[3]});
+      } else {
+        m.quads.push_back(q);
+      }
+    }
+  }
+  BoundaryCurve sym{"symmetry", {}}, out{"outflow", {}}, far_top{"farfield_top", {}},
+      far_left{"farfield_left", {}}, in{"inflow", {}}, wall{"wall", {}};
+  for (int i = 0; i + 1 < ni; ++i) sym.edges.push_back({id(i, 0), id(i + 1, 0)});
+  for (int j = 0; j + 1 < nj; ++j) out.edges.push_back({id(ni - 1, j), id(ni - 1, j + 1)});
+  for (int i = ni - 1; i > 0; --i) far_top.edges.push_back({id(i, nj - 1), id(i - 1, nj - 1)});
+  for (int j = nj - 1; j > j_wall + 1; --j) far_left.edges.push_back({id(0, j), id(0, j - 1)});
+  for (int j = j_wall; j > 0; --j) in.edges.push_back({id(0, j), id(0, j - 1)});
+  for (int i = 0; i < i_exit; ++i) wall.edges.push_back({id(i, j_wall), id(i + 1, j_wall)});
+  wall.edges.push_back({id(i_exit, j_wall), id(i_exit, j_wall + 1)});
+  for (int i = i_exit; i > 0; --i) wall.edges.push_back({id(i, j_wall + 1), id(i - 1, j_wall + 1)});
+  m.boundaries = {sym, out, far_top, far_left, in, wall};
+  return pm;
+}
+
+void expect_plume_converges(const PlumeMesh& pm) {
+  check_mesh(pm.mesh);
+  const PerfectGas gas;
+  const double p_amb = 101325.0, t_amb = 288.15, p0 = 5.4 * p_amb, t0 = 750.0;
+  const State w_amb{p_amb / (gas.R * t_amb), 0.0, 0.0, p_amb};
+  BoundaryCondition sym, out, far, in, wall;
+  sym.kind = BcKind::symmetry;
+  out.kind = BcKind::pressure_outflow;
+  out.static_pressure = p_amb;
+  far.kind = BcKind::farfield;
+  far.freestream = w_amb;
+  in.kind = BcKind::stagnation_inflow;
+  in.total_pressure = p0;
+  in.total_temperature = t0;
+  wall.kind = BcKind::slip_wall;
+  SolverSettings s;
+  s.order = 1;
+  s.max_iterations = 400;
+  s.reference_state = {w_amb[0], std::sqrt(gas.gamma * p_amb / w_amb[0]), std::sqrt(gas.gamma * p_amb / w_amb[0]),
+                       p_amb};
+  FlowSolver solver(pm.mesh, Geometry::planar, gas, {sym, out, far, far, in, wall}, s);
+  solver.set_uniform(w_amb);
+  const SolveReport r = solver.solve();
+  EXPECT_TRUE(r.converged) << "residual drop " << r.residual_drop << " after " << r.iterations << " iterations";
+  EXPECT_LT(r.residual_drop, 1e-8);
+  // The duct chokes at its exit: the mass flow through the inflow is the sonic one,
+  // rho* a* h = p0 / sqrt(R T0) sqrt(gamma) (2/(gamma+1))^((gamma+1)/(2(gamma-1))) h (h = 0.5 m),
+  // within the first-order scheme's error on 10 cells across the duct.
+  const double g = gas.gamma;
+  const double sonic = p0 / std::sqrt(gas.R * t0) * std::sqrt(g) * std::pow(2.0 / (g + 1.0), (g + 1.0) / (2.0 * (g - 1.0))) * 0.5;
+  const BoundaryIntegral inflow = solver.boundary_integral(4);
+  EXPECT_NEAR(-inflow.mass_flow / sonic, 1.0, 0.05);
+}
+
+}  // namespace
+
+TEST(FlowPlume, SonicJetIntoAirAtRestConvergesAtFirstOrder) {
+  expect_plume_converges(plume_mesh(12, 30, 10, 0.52, 1.08, 0.05));
+}
+
+// Open problem (README): omega -> 0 and CFL collapse, as on the full config3 mesh.
+TEST(FlowPlume, DISABLED_FinerSonicJetIntoAirAtRestConvergesAtFirstOrder) {
+  expect_plume_converges(plume_mesh(20, 50, 20, 0.505, 1.06, 0.025));
+}
