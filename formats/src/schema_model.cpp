@@ -15,7 +15,7 @@ AttributeRule iattr(std::string object, std::string name, std::string meaning, d
 }  // namespace
 
 Schema model_schema() {
-  Schema s{"model", "tfmb/model", 2, 0,
+  Schema s{"model", "tfmb/model", 2, 1,
            "the analysis model: flaps as beams, sections, joints, supports, walls, flow domain, "
            "conditions, thermal, mesh and analysis settings",
            false, {}, {}};
@@ -94,7 +94,7 @@ Schema model_schema() {
   s.attributes.push_back(sattr("/domain", "kind", "domain type", {"nozzle", "channel", "flatplate", "none"}));
   s.attributes.push_back(nattr("/domain", "plenum_length", "m", "nozzle: inflow face upstream of the first flap",
                                0.0, std::nullopt, false));
-  s.attributes.push_back(nattr("/domain", "downstream_length", "m", "nozzle: outflow face downstream of the exit",
+  s.attributes.push_back(nattr("/domain", "downstream_length", "m", "nozzle: downstream far-field face, this far behind the exit",
                                0.0, std::nullopt, false));
   s.attributes.push_back(nattr("/domain", "farfield_height", "m", "nozzle/flatplate: |y| of the far field",
                                0.0, std::nullopt, false));

@@ -6,7 +6,7 @@ namespace tfmb::flow {
 
 State viscous_flux(const PerfectGas& gas, const ViscousModel& model, Vec2 xi, Vec2 xj, const State& wi,
                    const State& wj, const std::array<double, 8>& gi, const std::array<double, 8>& gj,
-                   Vec2 n, double r_face, double* jac_scale) {
+                   Vec2 n, double r_face, double* jac_scale, double eddy_viscosity) {
   const Vec2 d = xj - xi;
   const double length = norm(d);
   const Vec2 t{d.x / length, d.y / length};
@@ -26,8 +26,9 @@ State viscous_flux(const PerfectGas& gas, const ViscousModel& model, Vec2 xi, Ve
   const Vec2 gt = corrected(0.5 * (grad_t(wi, gi, ti, 0) + grad_t(wj, gj, tj, 0)),
                             0.5 * (grad_t(wi, gi, ti, 1) + grad_t(wj, gj, tj, 1)), tj - ti);
   const double tf = 0.5 * (ti + tj);
-  const double mu = model.viscosity(tf);
-  const double k = mu * gas.cp() / model.prandtl;
+  const double mu_laminar = model.viscosity(tf);
+  const double mu = mu_laminar + eddy_viscosity;
+  const double k = gas.cp() * (mu_laminar / model.prandtl + eddy_viscosity / model.prandtl_turbulent);
   const double uf = 0.5 * (wi[1] + wj[1]);
   const double vf = 0.5 * (wi[2] + wj[2]);
   // Stokes' hypothesis (Blazek 2015, eq. 2.15)
@@ -42,8 +43,8 @@ State viscous_flux(const PerfectGas& gas, const ViscousModel& model, Vec2 xi, Ve
 }
 
 double hoop_stress(const PerfectGas& gas, const ViscousModel& model, const State& w,
-                   const std::array<double, 8>& g, double r) {
-  const double mu = model.viscosity(gas.temperature(w));
+                   const std::array<double, 8>& g, double r, double eddy_viscosity) {
+  const double mu = model.viscosity(gas.temperature(w)) + eddy_viscosity;
   // v/r, with its limit dv/dr on the axis (v = 0 there by symmetry)
   const double v_over_r = r > 1e-12 ? w[2] / r : g[5];
   const double div = g[2] + g[5] + v_over_r;
@@ -51,11 +52,11 @@ double hoop_stress(const PerfectGas& gas, const ViscousModel& model, const State
 }
 
 Block viscous_phi_jacobian(const PerfectGas& gas, const ViscousModel& model, const State& w, double uf,
-                           double vf) {
+                           double vf, double eddy_fraction) {
   const double rho = w[0], u = w[1], v = w[2];
   const double cv = gas.cv();
   const double e_tot = gas.conservative(w)[3] / rho;
-  const double kt = gas.cp() / model.prandtl;  // k / mu
+  const double kt = gas.cp() * ((1.0 - eddy_fraction) / model.prandtl + eddy_fraction / model.prandtl_turbulent);
   // derivatives of u, v, T with respect to (rho, rho u, rho v, rho E)
   const double du[4] = {-u / rho, 1.0 / rho, 0.0, 0.0};
   const double dv[4] = {-v / rho, 0.0, 1.0 / rho, 0.0};

@@ -33,8 +33,10 @@ int main(int argc, char** argv) {
   app.add_option("--inflow-angle", o.inflow_angle, "[deg] inflow direction from +x")->capture_default_str();
   app.add_option("--gamma", o.gamma, "[-] ratio of specific heats")->capture_default_str();
   app.add_option("--gas-constant", o.gas_constant, "[J/(kg K)] specific gas constant")->capture_default_str();
-  app.add_option("--model", o.model, "euler or laminar (Sutherland viscosity, Pr 0.72)")
-      ->check(CLI::IsMember({"euler", "laminar"}))->capture_default_str();
+  app.add_option("--model", o.model,
+                 "euler, laminar (Sutherland viscosity, Pr 0.72), sa (Spalart-Allmaras RANS with ft2, "
+                 "SA-neg for negative nu_tilde, Pr_t 0.9) or sa-noft2")
+      ->check(CLI::IsMember({"euler", "laminar", "sa", "sa-noft2"}))->capture_default_str();
   app.add_option("--wall-temperature", wall_temperature, "[K] isothermal no-slip walls (laminar; default adiabatic)");
   app.add_option("--throat-area", throat_area,
                  "[m] throat height per unit depth (planar) or [m^2] area (axisymmetric) for the discharge coefficient");

@@ -100,9 +100,11 @@ RunResult run(const RunOptions& o, const Logger& log) {
   require(o.gamma > 1.0 && o.gamma < 2.0, "--gamma must lie in (1, 2), got " + num(o.gamma));
   require(o.gas_constant > 0.0, "--gas-constant must be positive");
   require(o.ambient_pressure > 0.0, "--ambient-pressure must be positive");
-  require(o.model == "euler" || o.model == "laminar", "--model must be euler or laminar, got '" + o.model + "'");
+  require(o.model == "euler" || o.model == "laminar" || o.model == "sa" || o.model == "sa-noft2",
+          "--model must be euler, laminar, sa or sa-noft2, got '" + o.model + "'");
   LoadedMesh lm = load_mesh(o.mesh_file);
-  const bool viscous = o.model == "laminar";
+  const bool turbulent = o.model == "sa" || o.model == "sa-noft2";
+  const bool viscous = o.model == "laminar" || turbulent;
   const PerfectGas gas{o.gamma, o.gas_constant};
 
   const double t_inf = o.ambient_temperature;
@@ -159,6 +161,8 @@ RunResult run(const RunOptions& o, const Logger& log) {
   SolverSettings settings = o.settings;
   settings.renumber = o.renumber;
   settings.viscous = viscous;
+  settings.turbulent = turbulent;
+  settings.sa_ft2 = o.model != "sa-noft2";
   const double p_ref = has_inflow ? o.stagnation_pressure : o.ambient_pressure;
   const double t_ref = has_inflow ? o.stagnation_temperature : t_inf;
   const double rho_ref = p_ref / (o.gas_constant * t_ref);
@@ -175,6 +179,15 @@ RunResult run(const RunOptions& o, const Logger& log) {
   FlowSolver solver(lm.mesh, lm.geometry, gas, bcs, settings);
   if (o.restart_file) {
     solver.set_primitive(read_restart(*o.restart_file, lm));
+    if (turbulent) {
+      const h5::Reader reader(*o.restart_file);
+      if (reader.is_dataset("/fields/point/nu_tilde")) {
+        const auto nu_tilde = reader.read_vector("/fields/point/nu_tilde", lm.file_mesh.node_count());
+        solver.set_nu_tilde({nu_tilde.begin(), nu_tilde.end()});
+      } else {
+        log.info("restart file has no /fields/point/nu_tilde: Spalart-Allmaras starts from the free-stream value");
+      }
+    }
     log.info("restart from " + o.restart_file->string());
   } else if (has_farfield || !has_inflow) {
     solver.set_uniform(w_inf);
@@ -264,6 +277,11 @@ RunResult run(const RunOptions& o, const Logger& log) {
     w.write("/fields/point/pressure", p, "Pa", "static pressure");
     w.write("/fields/point/temperature", temp, "K", "static temperature");
     w.write("/fields/point/mach", mach, "1");
+    if (turbulent) {
+      w.write("/fields/point/nu_tilde", solver.nu_tilde(), "m^2/s", "Spalart-Allmaras variable");
+      w.write("/fields/point/eddy_viscosity", solver.eddy_viscosity(), "Pa s");
+      w.write("/fields/point/wall_distance", solver.wall_distance(), "m");
+    }
     for (int b : wall_curves) {
       const WallTrace t = solver.wall_trace(b);
       const std::string g = "/walls/" + lm.mesh.boundaries[b].name;

@@ -9,6 +9,9 @@
 
 #include "flux_roe.hpp"
 #include "limiter.hpp"
+#include "scalar_ilu.hpp"
+#include "turbulence_sa.hpp"
+#include "wall_distance.hpp"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -125,6 +128,144 @@ FlowSolver::FlowSolver(const Mesh& mesh, Geometry geometry, const PerfectGas& ga
   grad_.assign(n, std::array<double, 8>{});
   edge_flux_.assign(dual_.num_edges(), State{});
   spectral_radius_.assign(n, 0.0);
+  eddy_viscosity_.assign(n, 0.0);
+  if (settings_.turbulent) {
+    if (!settings_.viscous) throw std::invalid_argument("flow: the Spalart-Allmaras model needs the viscous terms");
+    std::vector<std::array<Vec2, 2>> walls;
+    for (int b = 0; b < static_cast<int>(bcs_.size()); ++b) {
+      if (!bcs_[b].no_slip()) continue;
+      for (const auto& e : mesh_.boundaries[b].edges) walls.push_back({dual_.coords[e[0]], dual_.coords[e[1]]});
+    }
+    wall_distance_ = tfmb::flow::wall_distance(dual_.coords, walls);
+    nu_tilde_.assign(n, 0.0);
+  }
+}
+
+void FlowSolver::set_freestream_nu_tilde() {
+  if (!settings_.turbulent) return;
+  for (int i = 0; i < dual_.num_nodes; ++i) {
+    const State w = gas_.primitive(u_[i]);
+    const double nu = settings_.viscosity.viscosity(gas_.temperature(w)) / w[0];
+    nu_tilde_[i] = wall_node_bc_[i] >= 0 ? 0.0 : settings_.sa_freestream_ratio * nu;
+  }
+}
+
+void FlowSolver::set_nu_tilde(const std::vector<double>& nu_tilde) {
+  if (!settings_.turbulent) return;
+  if (static_cast<int>(nu_tilde.size()) != dual_.num_nodes) {
+    throw std::invalid_argument("flow: nu_tilde size differs from mesh");
+  }
+  for (int i = 0; i < dual_.num_nodes; ++i) {
+    nu_tilde_[new_of_old_[i]] = wall_node_bc_[new_of_old_[i]] >= 0 ? 0.0 : nu_tilde[i];
+  }
+}
+
+std::vector<double> FlowSolver::nu_tilde() const {
+  std::vector<double> v;
+  if (!settings_.turbulent) return v;
+  v.resize(nu_tilde_.size());
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] = nu_tilde_[new_of_old_[i]];
+  return v;
+}
+
+std::vector<double> FlowSolver::eddy_viscosity() {
+  for (int i = 0; i < dual_.num_nodes; ++i) w_[i] = gas_.primitive(u_[i]);
+  update_eddy_viscosity();
+  std::vector<double> v(eddy_viscosity_.size());
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] = eddy_viscosity_[new_of_old_[i]];
+  return v;
+}
+
+std::vector<double> FlowSolver::wall_distance() const {
+  std::vector<double> v;
+  if (!settings_.turbulent) return v;
+  v.resize(wall_distance_.size());
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] = wall_distance_[new_of_old_[i]];
+  return v;
+}
+
+void FlowSolver::update_eddy_viscosity() {
+  if (!settings_.turbulent) return;
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < dual_.num_nodes; ++i) {
+    const double mu = settings_.viscosity.viscosity(gas_.temperature(w_[i]));
+    eddy_viscosity_[i] = sa::eddy_viscosity(w_[i][0], nu_tilde_[i], mu / w_[i][0]);
+  }
+}
+
+double FlowSolver::turbulence_step(double cfl) {
+  // One implicit step of the nu_tilde equation, non-conservative form (TMR "SA"):
+  //   D nu_tilde/Dt = P - D + 1/sigma [div((nu + nu_tilde) grad nu_tilde) + cb2 |grad nu_tilde|^2],
+  // the diffusion split as (1 + cb2)/sigma div(D grad nu_tilde) - cb2/sigma D_i lap(nu_tilde)
+  // (Spalart and Allmaras 1994; the edge form used by FUN3D), first-order upwind convection.
+  // rhs = V d nu_tilde / dt; the matrix V/dt - d rhs / d nu_tilde is an M-matrix, solved by
+  // three ILU(0)-preconditioned defect corrections.
+  const int n = dual_.num_nodes;
+  const auto& visc = settings_.viscosity;
+  const auto& inc = dual_.node_edges;
+  std::vector<double> rhs(n, 0.0), diag(n, 0.0), nu(n), diffusivity(n), offdiag(inc.edge.size(), 0.0);
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    nu[i] = visc.viscosity(gas_.temperature(w_[i])) / w_[i][0];
+    diffusivity[i] = sa::diffusivity(nu_tilde_[i], nu[i]);
+  }
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    double r = 0.0, d = spectral_radius_[i] / cfl;
+    for (int k = inc.offsets[i]; k < inc.offsets[i + 1]; ++k) {
+      const int e = inc.edge[k];
+      const int j = inc.neighbour[k];
+      const Vec2 n_e = dual_.edge_normal[e];
+      const double vn_out = inc.sign[k] * 0.5 * ((w_[i][1] + w_[j][1]) * n_e.x + (w_[i][2] + w_[j][2]) * n_e.y);
+      const double inflow = std::max(-vn_out, 0.0);
+      const double c = norm(n_e) / norm(dual_.coords[j] - dual_.coords[i]);
+      const double d_face = 0.5 * (diffusivity[i] + diffusivity[j]);
+      const double k_i = c / sa::sigma * ((1.0 + sa::cb2) * d_face - sa::cb2 * diffusivity[i]);
+      r += (inflow + k_i) * (nu_tilde_[j] - nu_tilde_[i]);
+      const double a = inflow + std::max(k_i, 0.0);
+      d += a;
+      offdiag[k] = -a;
+    }
+    rhs[i] = r;
+    diag[i] = d;
+  }
+  for (const auto& face : dual_.boundary_faces) {
+    const int i = face.node;
+    const BoundaryCondition& bc = bcs_[face.curve];
+    const double vn = w_[i][1] * face.normal.x + w_[i][2] * face.normal.y;
+    if (vn >= 0.0 || bc.kind == BcKind::slip_wall || bc.kind == BcKind::symmetry || bc.no_slip()) continue;
+    // inflow through inflow, far-field or outflow (backflow) faces brings free-stream nu_tilde
+    double nu_b = nu[i];
+    if (bc.kind == BcKind::farfield) {
+      const State& inf = bc.node_freestream.empty() ? bc.freestream : bc.node_freestream[i];
+      nu_b = visc.viscosity(gas_.temperature(inf)) / inf[0];
+    }
+    rhs[i] += -vn * (settings_.sa_freestream_ratio * nu_b - nu_tilde_[i]);
+    diag[i] += -vn;
+  }
+  double sum2 = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : sum2)
+  for (int i = 0; i < n; ++i) {
+    if (wall_node_bc_[i] >= 0) {
+      // strong nu_tilde = 0 on no-slip walls
+      diag[i] = 1.0;
+      rhs[i] = -nu_tilde_[i];
+      for (int k = inc.offsets[i]; k < inc.offsets[i + 1]; ++k) offdiag[k] = 0.0;
+      continue;
+    }
+    const double volume = dual_.volume[i];
+    const double vorticity = std::abs(grad_[i][4] - grad_[i][3]);  // |dv/dx - du/dy|
+    const sa::Source src = sa::source(nu_tilde_[i], nu[i], vorticity, wall_distance_[i], settings_.sa_ft2);
+    rhs[i] += volume * (src.production - src.destruction);
+    diag[i] -= volume * src.d_source;
+    sum2 += (rhs[i] / volume) * (rhs[i] / volume);
+  }
+  std::vector<double> delta;
+  solve_scalar(inc, diag, offdiag, rhs, delta, 3, sa_ilu_);
+  for (int i = 0; i < n; ++i) {
+    if (std::isfinite(delta[i])) nu_tilde_[i] += delta[i];
+  }
+  return std::sqrt(sum2 / n);
 }
 
 void FlowSolver::set_uniform(const State& w) { set_primitive(std::vector<State>(dual_.num_nodes, w)); }
@@ -134,6 +275,7 @@ void FlowSolver::set_primitive(const std::vector<State>& w) {
   for (int i = 0; i < dual_.num_nodes; ++i) u_[new_of_old_[i]] = gas_.conservative(w[i]);
   apply_strong_conditions(u_);
   limiter_frozen_ = false;
+  set_freestream_nu_tilde();  // a restart overrides it with set_nu_tilde()
 }
 
 std::vector<State> FlowSolver::primitive() const {
@@ -185,6 +327,8 @@ void FlowSolver::compute_residual(bool update_limiter) {
 
   const bool second = settings_.order >= 2;
   const bool axi = dual_.geometry == Geometry::axisymmetric;
+  update_eddy_viscosity();
+  const bool turbulent = settings_.turbulent;
   if (second || settings_.viscous) lsq_gradients(dual_, lsq_, w_, grad_);
   if (second && settings_.limiter && update_limiter) {
     if (settings_.venkat_wang > 0.0) venkat_eps_ = make_wang_epsilon(w_, settings_.venkat_wang, n);
@@ -215,7 +359,8 @@ void FlowSolver::compute_residual(bool update_limiter) {
     if (settings_.viscous) {
       const State fv = viscous_flux(gas_, settings_.viscosity, dual_.coords[i], dual_.coords[j], w_[i], w_[j],
                                     grad_[i], grad_[j], axi ? n_e : dual_.edge_normal_planar[e],
-                                    axi ? norm(n_e) / norm(dual_.edge_normal_planar[e]) : 0.0, nullptr);
+                                    axi ? norm(n_e) / norm(dual_.edge_normal_planar[e]) : 0.0, nullptr,
+                                    turbulent ? 0.5 * (eddy_viscosity_[i] + eddy_viscosity_[j]) : 0.0);
       for (int v = 0; v < 4; ++v) f[v] -= fv[v];
     }
     edge_flux_[e] = f;
@@ -238,7 +383,7 @@ void FlowSolver::compute_residual(bool update_limiter) {
       lambda += std::abs(vn) + c * norm(n_e);  // Blazek 2015, eq. 6.21
       if (settings_.viscous) {
         // viscous spectral radius (Blazek 2015, eq. 6.22)
-        const double mu = settings_.viscosity.viscosity(gas_.temperature(w_[i]));
+        const double mu = settings_.viscosity.viscosity(gas_.temperature(w_[i])) + eddy_viscosity_[i];
         const double sn = norm(dual_.edge_normal_planar[e]);
         lambda += std::max(4.0 / 3.0, gas_.gamma / settings_.viscosity.prandtl) * mu / w_[i][0] * sn * sn /
                   dual_.area[i];
@@ -273,7 +418,7 @@ void FlowSolver::compute_residual(bool update_limiter) {
     for (int i = 0; i < n; ++i) {
       double source = w_[i][3];
       if (settings_.viscous) {
-        source -= hoop_stress(gas_, settings_.viscosity, w_[i], grad_[i], dual_.coords[i].y);
+        source -= hoop_stress(gas_, settings_.viscosity, w_[i], grad_[i], dual_.coords[i].y, eddy_viscosity_[i]);
       }
       res_[i][2] -= source * dual_.area[i];
     }
@@ -318,14 +463,17 @@ void FlowSolver::assemble_jacobian(const std::vector<double>& diag_scale) {
     if (viscous) {
       double c = 0.0;
       const bool axi = dual_.geometry == Geometry::axisymmetric;
+      const double mu_t = settings_.turbulent ? 0.5 * (eddy_viscosity_[i] + eddy_viscosity_[j]) : 0.0;
       viscous_flux(gas_, settings_.viscosity, dual_.coords[i], dual_.coords[j], w_[i], w_[j], grad_[i], grad_[j],
                    axi ? n_e : dual_.edge_normal_planar[e],
-                   axi ? norm(n_e) / norm(dual_.edge_normal_planar[e]) : 0.0, &c);
+                   axi ? norm(n_e) / norm(dual_.edge_normal_planar[e]) : 0.0, &c, mu_t);
       const double uf = 0.5 * (w_[i][1] + w_[j][1]);
       const double vf = 0.5 * (w_[i][2] + w_[j][2]);
+      const double mu_laminar = settings_.viscosity.viscosity(0.5 * (gas_.temperature(w_[i]) + gas_.temperature(w_[j])));
+      const double eddy_fraction = mu_t / (mu_laminar + mu_t);
       // F = F_c - c (Phi_j - Phi_i)
-      add_block(jac.d_left.data(), viscous_phi_jacobian(gas_, settings_.viscosity, w_[i], uf, vf), c);
-      add_block(jac.d_right.data(), viscous_phi_jacobian(gas_, settings_.viscosity, w_[j], uf, vf), -c);
+      add_block(jac.d_left.data(), viscous_phi_jacobian(gas_, settings_.viscosity, w_[i], uf, vf, eddy_fraction), c);
+      add_block(jac.d_right.data(), viscous_phi_jacobian(gas_, settings_.viscosity, w_[j], uf, vf, eddy_fraction), -c);
     }
     // R_i += F, R_j -= F
     double* bij = jac_.block(edge_pos_ij_[e]);
@@ -376,7 +524,8 @@ void FlowSolver::assemble_jacobian(const std::vector<double>& diag_scale) {
       const double r = dual_.coords[i].y;
       if (settings_.viscous && r > 1e-12) {
         // + d(tau_theta_theta A)/dU through its 4/3 mu v / r part
-        const double k = a * 4.0 / 3.0 * settings_.viscosity.viscosity(gas_.temperature(w)) / (r * w[0]);
+        const double k =
+            a * 4.0 / 3.0 * (settings_.viscosity.viscosity(gas_.temperature(w)) + eddy_viscosity_[i]) / (r * w[0]);
         d[8] -= k * w[2];
         d[10] += k;
       }
@@ -548,6 +697,7 @@ SolveReport FlowSolver::solve() {
       omega_min = std::min(omega_min, omega_i);
     }
     apply_strong_conditions(u_);
+    if (settings_.turbulent) rec.turbulence_residual = turbulence_step(cfl);
     const double limited_fraction = static_cast<double>(limited) / n;
     rec.relaxation = omega_min;
     // CFL control sees a limited update only if it concerns more than a few nodes
@@ -567,8 +717,10 @@ SolveReport FlowSolver::solve() {
     report.history.push_back(rec);
     report.iterations = it;
     if (settings_.print_every > 0 && (it % settings_.print_every == 0 || it == 1)) {
-      std::fprintf(stderr, "iter %5d  res(rho) %.3e  drop %.2e  cfl %.2e  omega %.2f  lin %3d (%.1e)\n", it,
+      std::fprintf(stderr, "iter %5d  res(rho) %.3e  drop %.2e  cfl %.2e  omega %.2f  lin %3d (%.1e)", it,
                    rnorm[0], report.residual_drop, cfl, omega, lin.iterations, lin.relative_residual);
+      if (settings_.turbulent) std::fprintf(stderr, "  res(nu_t) %.2e", rec.turbulence_residual);
+      std::fprintf(stderr, "\n");
     }
     if (report.backoffs > 20) break;
     // Give up when the CFL has collapsed: the pseudo-time march no longer moves.

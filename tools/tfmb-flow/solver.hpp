@@ -13,6 +13,7 @@
 #include "gradient_lsq.hpp"
 #include "linear_solver.hpp"
 #include "mesh_dual.hpp"
+#include "scalar_ilu.hpp"
 
 namespace tfmb::flow {
 
@@ -61,6 +62,12 @@ struct SolverSettings {
   int print_every = 0;            // residual line on stderr every N iterations (0: silent)
   bool viscous = false;
   ViscousModel viscosity;
+  // Spalart-Allmaras RANS (needs viscous): the nu_tilde equation is solved segregated, one
+  // implicit step (first-order upwind convection, same local time step) after each mean-flow
+  // update, with the eddy viscosity lagged by one iteration in the mean-flow equations.
+  bool turbulent = false;
+  bool sa_ft2 = true;                // the ft2 term of standard SA (TMR "SA"); false: SA-noft2
+  double sa_freestream_ratio = 3.0;  // nu_tilde / nu entering at inflow and far field (TMR)
   int threads = 1;                // OpenMP threads used inside solve() and residual()
   // Renumber the nodes internally (reverse Cuthill-McKee): a banded matrix makes ILU(0) a much
   // stronger preconditioner. Node ids at the interface stay those of the mesh given.
@@ -74,6 +81,7 @@ struct IterationRecord {
   double relaxation = 1.0; // smallest fraction of the Newton update applied at a node
   int linear_iterations = 0;
   double linear_residual = 0.0;
+  double turbulence_residual = 0.0;  // RMS of d nu_tilde / dt [m^2/s^2] (0 without SA)
   double wall_time = 0.0;  // since the start of solve() [s]
 };
 
@@ -119,6 +127,12 @@ class FlowSolver {
   void set_uniform(const State& w);
   void set_primitive(const std::vector<State>& w);
   std::vector<State> primitive() const;
+  // Spalart-Allmaras working variable nu_tilde [m^2/s] per node (empty without SA), the eddy
+  // viscosity [Pa s] and the wall distance [m] it uses.
+  void set_nu_tilde(const std::vector<double>& nu_tilde);
+  std::vector<double> nu_tilde() const;
+  std::vector<double> eddy_viscosity();
+  std::vector<double> wall_distance() const;
   std::vector<State> conservative() const;
   const std::vector<Vec2>& node_coords() const { return coords_external_; }
   std::vector<double> node_area() const;  // planar dual-cell areas [m^2]
@@ -138,6 +152,9 @@ class FlowSolver {
   void assemble_jacobian(const std::vector<double>& diag_scale);
   void apply_strong_conditions(std::vector<State>& u) const;
   bool physical(const std::vector<State>& u) const;
+  void update_eddy_viscosity();
+  double turbulence_step(double cfl);  // returns the RMS of d nu_tilde / dt
+  void set_freestream_nu_tilde();
   State residual_norm() const;
 
   Mesh mesh_;                                     // internal numbering
@@ -159,9 +176,11 @@ class FlowSolver {
 
   std::vector<State> u_, w_, res_, phi_, edge_flux_;
   std::vector<std::array<double, 8>> grad_;
+  std::vector<double> nu_tilde_, eddy_viscosity_, wall_distance_;
   std::vector<double> spectral_radius_;           // sum over faces of (|V.n| + c|n|) per node
   BlockSparseMatrix jac_;
   BlockIlu0 ilu_;
+  ScalarIlu0 sa_ilu_;
   GmresWorkspace gmres_workspace_;
   bool limiter_frozen_ = false;
 };

@@ -355,7 +355,10 @@ std::vector<DomainBoundary> nozzle_domain(const Model& model) {
 
   std::vector<DomainBoundary> loop;
   loop.push_back(piece("farfield_lower", "farfield", segment({x_up, -height}, {x_down, -height})));
-  loop.push_back(piece("outflow", "outflow", segment({x_down, -height}, {x_down, height})));
+  // The downstream face of the plume box is ambient air too: a characteristic far field lets the
+  // jet leave (supersonic parts extrapolated) and the entrained air come in, where a fixed static
+  // pressure with interior entropy on backflow drives the corners to vacuum (tfmb-flow README).
+  loop.push_back(piece("farfield_downstream", "farfield", segment({x_down, -height}, {x_down, height})));
   loop.push_back(piece("farfield_upper", "farfield", segment({x_down, height}, {x_up, height})));
   // Upper body, travelled with the flow domain on the left.
   const Point upper_int_start = upper_int.front().points.front();

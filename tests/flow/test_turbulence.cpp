@@ -1,0 +1,69 @@
+// Spalart-Allmaras source terms and the wall distance (tools/tfmb-flow/turbulence_sa.cpp,
+// wall_distance.cpp).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "turbulence_sa.hpp"
+#include "wall_distance.hpp"
+
+using namespace tfmb::flow;
+
+// In the log layer nu_tilde = kappa u_tau y, Omega = u_tau / (kappa y), d = y; with fv2, ft2 -> 0
+// (chi large) r = 1, fw = 1, and production - destruction must balance the diffusion
+// (1 + cb2)/sigma (kappa u_tau)^2: that is how cw1 is defined (Spalart and Allmaras 1994).
+TEST(SpalartAllmaras, LogLayerBalancesDiffusion) {
+  const double u_tau = 2.0, nu = 1e-9;
+  for (double y : {1e-3, 1e-2, 0.1}) {
+    const double nu_tilde = sa::kappa * u_tau * y;
+    const sa::Source s = sa::source(nu_tilde, nu, u_tau / (sa::kappa * y), y);
+    const double diffusion = (1.0 + sa::cb2) / sa::sigma * std::pow(sa::kappa * u_tau, 2);
+    EXPECT_NEAR((s.production - s.destruction + diffusion) / diffusion, 0.0, 1e-3) << "y = " << y;
+  }
+}
+
+TEST(SpalartAllmaras, EddyViscosityAndNegativeBranch) {
+  const double nu = 1.5e-5, rho = 1.2;
+  // chi = cv1: fv1 = 1/2
+  EXPECT_NEAR(sa::eddy_viscosity(rho, sa::cv1 * nu, nu), rho * sa::cv1 * nu * 0.5, 1e-15);
+  EXPECT_EQ(sa::eddy_viscosity(rho, -1e-5, nu), 0.0);
+  // SA-neg: production cb1 (1 - ct3) Omega nu_tilde, destruction -cw1 (nu_tilde/d)^2
+  const double nt = -2e-5, omega = 300.0, d = 0.01;
+  const sa::Source s = sa::source(nt, nu, omega, d);
+  EXPECT_NEAR(s.production, sa::cb1 * (1.0 - sa::ct3) * omega * nt, 1e-15);
+  EXPECT_NEAR(s.destruction, -sa::cw1 * nt * nt / (d * d), 1e-12);
+  // diffusion coefficient with fn = (cn1 + chi^3)/(cn1 - chi^3)
+  const double chi = nt / nu;
+  EXPECT_NEAR(sa::diffusivity(nt, nu), nu + nt * (16.0 + chi * chi * chi) / (16.0 - chi * chi * chi), 1e-18);
+  EXPECT_GT(sa::diffusivity(nt, nu), 0.0);
+}
+
+// The implicit coefficient is the source's derivative where that is negative, never positive.
+TEST(SpalartAllmaras, SourceDerivativeIsNonPositiveAndConsistent) {
+  const double nu = 1.5e-5;
+  for (double chi : {0.5, 3.0, 30.0, 300.0}) {
+    for (double d : {1e-5, 1e-3, 0.1}) {
+      const double nt = chi * nu, omega = 1e3;
+      const sa::Source s = sa::source(nt, nu, omega, d);
+      EXPECT_LE(s.d_source, 0.0);
+      const double h = 1e-6 * nt;
+      const sa::Source a = sa::source(nt + h, nu, omega, d), b = sa::source(nt - h, nu, omega, d);
+      const double fd = ((a.production - a.destruction) - (b.production - b.destruction)) / (2.0 * h);
+      if (fd < 0.0) {
+        EXPECT_NEAR(s.d_source, fd, 1e-4 * std::abs(fd) + 1e-12) << "chi " << chi << " d " << d;
+      }
+    }
+  }
+}
+
+TEST(WallDistance, ExactToSegmentsAndEnds) {
+  const std::vector<std::array<Vec2, 2>> walls = {{Vec2{0.0, 0.0}, Vec2{1.0, 0.0}}, {Vec2{1.0, 0.0}, Vec2{1.0, 1.0}}};
+  const std::vector<Vec2> points = {{0.5, 0.3}, {-0.3, 0.4}, {0.9, 0.5}, {2.0, 0.5}, {0.2, 0.0}};
+  const auto d = wall_distance(points, walls);
+  EXPECT_DOUBLE_EQ(d[0], 0.3);
+  EXPECT_DOUBLE_EQ(d[1], 0.5);   // to the end point (0, 0)
+  EXPECT_NEAR(d[2], 0.1, 1e-15);  // nearer to the vertical wall
+  EXPECT_DOUBLE_EQ(d[3], 1.0);
+  EXPECT_DOUBLE_EQ(d[4], 0.0);
+  EXPECT_TRUE(std::isinf(wall_distance(points, {})[0]));
+}
