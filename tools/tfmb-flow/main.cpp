@@ -1,4 +1,4 @@
-// tfmb-flow: steady 2D compressible flow (Euler or laminar Navier-Stokes, planar or
+// tfmb-flow: steady 2D compressible flow (Euler, laminar Navier-Stokes or Spalart-Allmaras RANS, planar or
 // axisymmetric) on a mixed triangle/quad flow mesh.
 //
 // Sample runs:
@@ -37,6 +37,10 @@ int main(int argc, char** argv) {
                  "euler, laminar (Sutherland viscosity, Pr 0.72), sa (Spalart-Allmaras RANS with ft2, "
                  "SA-neg for negative nu_tilde, Pr_t 0.9) or sa-noft2")
       ->check(CLI::IsMember({"euler", "laminar", "sa", "sa-noft2"}))->capture_default_str();
+  app.add_option("--inflow-ramp", o.inflow_ramp,
+                 "iterations over which the inflow total pressure rises from the ambient pressure to --p0 "
+                 "(-1: 50 for a jet into a far field started from rest, else 0)")
+      ->capture_default_str();
   app.add_option("--wall-temperature", wall_temperature, "[K] isothermal no-slip walls (laminar; default adiabatic)");
   app.add_option("--throat-area", throat_area,
                  "[m] throat height per unit depth (planar) or [m^2] area (axisymmetric) for the discharge coefficient");

@@ -176,6 +176,15 @@ RunResult run(const RunOptions& o, const Logger& log) {
       settings.residual_reference = reader.attr_f64("/convergence", "residual_reference");
     }
   }
+  if (has_inflow && !o.restart_file) {
+    // A jet started from air at rest: open the valve over the first iterations (see
+    // SolverSettings::inflow_ramp_iterations); internal flows start from moving gas instead.
+    settings.inflow_ramp_iterations = o.inflow_ramp >= 0 ? o.inflow_ramp : (has_farfield ? 50 : 0);
+    settings.inflow_ramp_start_pressure = o.ambient_pressure;
+  } else if (o.inflow_ramp > 0) {
+    settings.inflow_ramp_iterations = o.inflow_ramp;
+    settings.inflow_ramp_start_pressure = o.ambient_pressure;
+  }
   FlowSolver solver(lm.mesh, lm.geometry, gas, bcs, settings);
   if (o.restart_file) {
     solver.set_primitive(read_restart(*o.restart_file, lm));

@@ -578,8 +578,19 @@ SolveReport FlowSolver::solve() {
   double cfl_ceiling = settings_.cfl_max;
   int last_progress = 0;  // last new minimum or last ceiling cut
   limiter_frozen_ = false;
+  std::vector<double> target_total_pressure(bcs_.size());
+  for (std::size_t b = 0; b < bcs_.size(); ++b) target_total_pressure[b] = bcs_[b].total_pressure;
+  const int ramp = settings_.inflow_ramp_iterations;
 
   for (int it = 1; it <= settings_.max_iterations; ++it) {
+    if (ramp > 0) {
+      const double f = std::min(1.0, static_cast<double>(it) / ramp);
+      for (std::size_t b = 0; b < bcs_.size(); ++b) {
+        if (bcs_[b].kind != BcKind::stagnation_inflow) continue;
+        const double p_start = std::min(settings_.inflow_ramp_start_pressure, target_total_pressure[b]);
+        bcs_[b].total_pressure = p_start + f * (target_total_pressure[b] - p_start);
+      }
+    }
     compute_residual(!limiter_frozen_);
     State rnorm = residual_norm();
     if (!std::isfinite(rnorm[0] + rnorm[1] + rnorm[2] + rnorm[3])) {
@@ -630,7 +641,7 @@ SolveReport FlowSolver::solve() {
     rec.residual = rnorm;
     rec.cfl = cfl;
     report.residual_reference = r_max;
-    if (r_max > 0.0 && report.residual_drop <= settings_.residual_drop &&
+    if (r_max > 0.0 && report.residual_drop <= settings_.residual_drop && it > ramp &&
         (it > 1 || settings_.residual_reference > 0.0)) {
       report.converged = true;
       rec.wall_time = std::chrono::duration<double>(clock::now() - start).count();
@@ -720,7 +731,12 @@ SolveReport FlowSolver::solve() {
       std::fprintf(stderr, "iter %5d  res(rho) %.3e  drop %.2e  cfl %.2e  omega %.2f  lin %3d (%.1e)", it,
                    rnorm[0], report.residual_drop, cfl, omega, lin.iterations, lin.relative_residual);
       if (settings_.turbulent) std::fprintf(stderr, "  res(nu_t) %.2e", rec.turbulence_residual);
-      std::fprintf(stderr, "\n");
+      // where the density residual is largest: the first thing to look at when it stalls
+      int worst = 0;
+      for (int i = 1; i < n; ++i) {
+        if (std::abs(res_[i][0]) / dual_.volume[i] > std::abs(res_[worst][0]) / dual_.volume[worst]) worst = i;
+      }
+      std::fprintf(stderr, "  max at (%.4g, %.4g)\n", dual_.coords[worst].x, dual_.coords[worst].y);
     }
     if (report.backoffs > 20) break;
     // Give up when the CFL has collapsed: the pseudo-time march no longer moves.

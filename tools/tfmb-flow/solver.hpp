@@ -45,6 +45,12 @@ struct SolverSettings {
   // one, and on a jet into air at rest the Newton-like iteration can settle into a limit cycle
   // (residual oscillating at a constant level, updates taken whole) that no relaxation sees.
   int cfl_stall_iterations = 20;
+  // Start-up: raise the total pressure of every stagnation inflow linearly from
+  // inflow_ramp_start_pressure to its value over this many iterations (0: none), as a valve
+  // opening would. A nozzle started from air at rest with the full pressure ratio at the inflow
+  // face sees a shock-tube transient that the implicit pseudo-time march crosses badly.
+  int inflow_ramp_iterations = 0;
+  double inflow_ramp_start_pressure = 0.0;  // [Pa]
   int max_iterations = 500;
   double residual_drop = 1e-8;    // converged when the density residual fell by this factor
   // Reference density residual for the drop (0: the largest residual of this run). A restart
