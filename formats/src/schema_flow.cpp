@@ -25,8 +25,10 @@ Schema flow_schema() {
   s.datasets.push_back(f64("/walls/*/wall_shear", {"n"}, "Pa",
                            "wall shear stress along the wall direction of increasing s"));
   s.datasets.push_back(f64("/walls/*/heat_flux", {"n"}, "W/m^2", "into the wall"));
-  s.datasets.push_back(f64("/walls/*/heat_transfer_coefficient", {"n"}, "W/(m^2 K)", "", false));
-  s.datasets.push_back(f64("/walls/*/adiabatic_wall_temperature", {"n"}, "K", "", false));
+  s.datasets.push_back(f64("/walls/*/heat_transfer_coefficient", {"n"}, "W/(m^2 K)",
+                           "q_w / (T_aw - T_w) of an isothermal probe run below T_aw (viscous, adiabatic walls)", false));
+  s.datasets.push_back(f64("/walls/*/adiabatic_wall_temperature", {"n"}, "K",
+                           "wall temperature of the adiabatic viscous solution (recovery temperature)", false));
   s.attributes.push_back(nattr("/integrals", "mass_flow", "kg/(s m)", "per unit depth (planar)"));
   s.attributes.push_back(nattr("/integrals", "thrust_x", "N/m", "per unit depth (planar)"));
   s.attributes.push_back(nattr("/integrals", "thrust_y", "N/m", "per unit depth (planar)"));

@@ -93,5 +93,24 @@ TEST(TmrFlatPlate, SpalartAllmarasSkinFrictionAndDrag) {
   EXPECT_NEAR(cf / cf_fun3d, 1.0, 0.01);
   EXPECT_NEAR(cd / cd_fun3d, 1.0, 0.01);
   EXPECT_EQ(flow.attr_i64("/convergence", "converged"), 1);
+
+  // Heat transfer (the isothermal probe run): the adiabatic wall temperature against the
+  // turbulent recovery factor Pr^(1/3), and h against the Colburn-Reynolds analogy
+  // St = Cf/2 Pr^(-2/3) with the local Cf (Colburn's analogy, Incropera et al. 2007, sec. 7.2;
+  // the recovery factor, White 2006, ch. 7); the analogy itself holds to a few per cent here.
+  const auto t_aw = flow.read_vector("/walls/plate/adiabatic_wall_temperature");
+  const auto h = flow.read_vector("/walls/plate/heat_transfer_coefficient");
+  const double pr = 0.72, cp = 1.4 * r_gas / 0.4;
+  const double t_recovery = t_inf + std::cbrt(pr) * (u * u / (2.0 * cp));
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    if (x[k] < 0.3 || x[k] > 1.8) continue;
+    EXPECT_NEAR(t_aw[k], t_recovery, 0.1) << "x " << x[k];
+    const double colburn = 0.5 * std::abs(tau[k]) / q * std::pow(pr, -2.0 / 3.0) * rho * u * cp;
+    EXPECT_NEAR(h[k] / colburn, 1.0, 0.1) << "x " << x[k];
+    if (std::abs(x[k] - x_ref) < 0.01) {
+      std::printf("  x %.3f: T_aw %.3f K (recovery Pr^1/3: %.3f K), h %.1f W/(m^2 K) (Colburn %.1f)\n", x[k], t_aw[k],
+                  t_recovery, h[k], colburn);
+    }
+  }
   fs::remove_all(dir);
 }

@@ -34,6 +34,8 @@ struct BoundaryCondition {
   std::vector<State> node_freestream;
   double static_pressure = 0.0;    // pressure_outflow [Pa]
   double wall_temperature = 0.0;   // wall_isothermal [K]
+  // wall_isothermal: per node of the solver's numbering [K]; overrides wall_temperature when set
+  std::vector<double> node_wall_temperature;
   // slip_wall: Riemann flux against the mirror state (default: robust when the flow impinges,
   // needed for jet start-up) or the pressure-only flux (more accurate on curved walls: the
   // supersonic vortex errors halve, orders 1.97/1.95 instead of 1.89/1.84). Symmetry always

@@ -37,6 +37,10 @@ int main(int argc, char** argv) {
                  "euler, laminar (Sutherland viscosity, Pr 0.72), sa (Spalart-Allmaras RANS with ft2, "
                  "SA-neg for negative nu_tilde, Pr_t 0.9) or sa-noft2")
       ->check(CLI::IsMember({"euler", "laminar", "sa", "sa-noft2"}))->capture_default_str();
+  app.add_option("--heat-transfer-dt", o.heat_transfer_dt,
+                 "[K] viscous runs with adiabatic walls: after converging, a probe run with the walls this much "
+                 "below the adiabatic wall temperature gives the heat transfer coefficient (0: skip)")
+      ->capture_default_str();
   app.add_option("--inflow-ramp", o.inflow_ramp,
                  "iterations over which the inflow total pressure rises from the ambient pressure to --p0 "
                  "(-1: 50 for a jet into a far field started from rest, else 0)")
@@ -57,6 +61,11 @@ int main(int argc, char** argv) {
                  "[-] converged when the density residual fell by this factor")->capture_default_str();
   app.add_option("--cfl-start", o.settings.cfl_start, "[-] initial CFL number")->capture_default_str();
   app.add_option("--cfl-max", o.settings.cfl_max, "[-] largest CFL number of the ramp")->capture_default_str();
+  app.add_option("--linear-tolerance", o.settings.linear_tolerance,
+                 "[-] relative GMRES tolerance per nonlinear iteration")
+      ->capture_default_str();
+  app.add_option("--gmres-max-iterations", o.settings.gmres_max_iterations, "GMRES iteration limit per nonlinear iteration")
+      ->capture_default_str();
   app.add_option("--print-every", o.settings.print_every, "residual line on stderr every N iterations (0: none)")
       ->capture_default_str();
   o.settings.print_every = 10;

@@ -258,8 +258,33 @@ RunResult run(const RunOptions& o, const Logger& log) {
     result.discharge_coefficient = result.mass_flow / ideal;
   }
 
-  // Output in the numbering of the input mesh.
+  // Output in the numbering of the input mesh: fields and traces of the solution, before the
+  // heat-transfer probe changes the state.
   const auto w_solver = solver.primitive();
+  std::vector<WallTrace> traces;
+  for (int b : wall_curves) traces.push_back(solver.wall_trace(b));
+  const std::vector<double> nu_tilde = turbulent ? solver.nu_tilde() : std::vector<double>{};
+  const std::vector<double> eddy_viscosity = turbulent ? solver.eddy_viscosity() : std::vector<double>{};
+  // Heat transfer coefficient for tfmb-heat's convection condition: walls made isothermal
+  // heat_transfer_dt below the adiabatic wall temperature, restarted from the adiabatic solution,
+  // h = q_w / (T_aw - T_w) node by node (the adiabatic wall temperature is the recovery
+  // temperature of the viscous solution).
+  std::vector<std::vector<double>> heat_transfer;
+  const double heat_transfer_dt = o.heat_transfer_dt;
+  if (viscous && !o.wall_temperature && heat_transfer_dt > 0.0) {
+    solver.make_walls_isothermal(heat_transfer_dt);
+    solver.set_residual_reference(rep.residual_reference);
+    const SolveReport probe = solver.solve();
+    log.info("heat-transfer probe (walls " + num(heat_transfer_dt) + " K below adiabatic): " +
+             (probe.converged ? "converged" : "NOT converged") + " in " + std::to_string(probe.iterations) +
+             " iterations");
+    for (std::size_t c = 0; c < wall_curves.size(); ++c) {
+      const WallTrace probe_trace = solver.wall_trace(wall_curves[c]);
+      std::vector<double> h(probe_trace.heat_flux.size());
+      for (std::size_t k = 0; k < h.size(); ++k) h[k] = probe_trace.heat_flux[k] / heat_transfer_dt;
+      heat_transfer.push_back(std::move(h));
+    }
+  }
   const std::size_t n = lm.file_mesh.node_count();
   std::vector<double> rho(n), p(n), temp(n), mach(n);
   h5::MatrixXdR vel(n, 3);
@@ -287,12 +312,13 @@ RunResult run(const RunOptions& o, const Logger& log) {
     w.write("/fields/point/temperature", temp, "K", "static temperature");
     w.write("/fields/point/mach", mach, "1");
     if (turbulent) {
-      w.write("/fields/point/nu_tilde", solver.nu_tilde(), "m^2/s", "Spalart-Allmaras variable");
-      w.write("/fields/point/eddy_viscosity", solver.eddy_viscosity(), "Pa s");
+      w.write("/fields/point/nu_tilde", nu_tilde, "m^2/s", "Spalart-Allmaras variable");
+      w.write("/fields/point/eddy_viscosity", eddy_viscosity, "Pa s");
       w.write("/fields/point/wall_distance", solver.wall_distance(), "m");
     }
-    for (int b : wall_curves) {
-      const WallTrace t = solver.wall_trace(b);
+    for (std::size_t c = 0; c < wall_curves.size(); ++c) {
+      const int b = wall_curves[c];
+      const WallTrace& t = traces[c];
       const std::string g = "/walls/" + lm.mesh.boundaries[b].name;
       std::vector<std::int64_t> node(t.node.size());
       for (std::size_t k = 0; k < node.size(); ++k) node[k] = t.node[k];
@@ -304,6 +330,11 @@ RunResult run(const RunOptions& o, const Logger& log) {
       w.write(g + "/temperature", t.temperature, "K", "wall temperature");
       w.write(g + "/wall_shear", t.shear_stress, "Pa", "along the direction of increasing s");
       w.write(g + "/heat_flux", t.heat_flux, "W/m^2", "into the wall");
+      if (!heat_transfer.empty()) {
+        w.write(g + "/adiabatic_wall_temperature", t.temperature, "K", "wall temperature of the adiabatic solution");
+        w.write(g + "/heat_transfer_coefficient", heat_transfer[c], "W/(m^2 K)",
+                "q_w / (T_aw - T_w) of an isothermal probe run " + num(heat_transfer_dt) + " K below T_aw");
+      }
     }
     w.create_group("/integrals");
     w.set_attr("/integrals", "mass_flow", result.mass_flow);

@@ -141,6 +141,24 @@ FlowSolver::FlowSolver(const Mesh& mesh, Geometry geometry, const PerfectGas& ga
   }
 }
 
+double FlowSolver::wall_temperature_at(int b, int node) const {
+  const auto& per_node = bcs_[b].node_wall_temperature;
+  return per_node.empty() ? bcs_[b].wall_temperature : per_node[node];
+}
+
+void FlowSolver::make_walls_isothermal(double below) {
+  for (int i = 0; i < dual_.num_nodes; ++i) w_[i] = gas_.primitive(u_[i]);
+  for (int b = 0; b < static_cast<int>(bcs_.size()); ++b) {
+    if (bcs_[b].kind != BcKind::wall_adiabatic) continue;
+    bcs_[b].kind = BcKind::wall_isothermal;
+    bcs_[b].node_wall_temperature.assign(dual_.num_nodes, 0.0);
+    for (const auto& e : mesh_.boundaries[b].edges) {
+      for (int node : e) bcs_[b].node_wall_temperature[node] = gas_.temperature(w_[node]) - below;
+    }
+  }
+  apply_strong_conditions(u_);
+}
+
 void FlowSolver::set_freestream_nu_tilde() {
   if (!settings_.turbulent) return;
   for (int i = 0; i < dual_.num_nodes; ++i) {
@@ -305,7 +323,7 @@ void FlowSolver::apply_strong_conditions(std::vector<State>& u) const {
     const double p_internal = (gas_.gamma - 1.0) * (u[i][3] - 0.5 * (u[i][1] * u[i][1] + u[i][2] * u[i][2]) / rho);
     u[i][1] = 0.0;
     u[i][2] = 0.0;
-    u[i][3] = bcs_[b].kind == BcKind::wall_isothermal ? rho * gas_.cv() * bcs_[b].wall_temperature
+    u[i][3] = bcs_[b].kind == BcKind::wall_isothermal ? rho * gas_.cv() * wall_temperature_at(b, i)
                                                        : p_internal / (gas_.gamma - 1.0);
   }
 }
@@ -552,7 +570,7 @@ void FlowSolver::assemble_jacobian(const std::vector<double>& diag_scale) {
     d[5] = 1.0;
     d[10] = 1.0;
     if (iso) {
-      d[12] = -gas_.cv() * bcs_[b].wall_temperature;
+      d[12] = -gas_.cv() * wall_temperature_at(b, i);
       d[15] = 1.0;
     }
   }
@@ -660,7 +678,7 @@ SolveReport FlowSolver::solve() {
         rhs[4 * i + 1] = -u_[i][1];
         rhs[4 * i + 2] = -u_[i][2];
         if (bcs_[b].kind == BcKind::wall_isothermal) {
-          rhs[4 * i + 3] = -(u_[i][3] - u_[i][0] * gas_.cv() * bcs_[b].wall_temperature);
+          rhs[4 * i + 3] = -(u_[i][3] - u_[i][0] * gas_.cv() * wall_temperature_at(b, i));
         }
       }
     }
@@ -675,6 +693,7 @@ SolveReport FlowSolver::solve() {
     // a node unchanged if even the limited update is not physical. Local relaxation acts like
     // a local time step: a near-vacuum corner does not hold back the rest of the domain.
     double omega_min = 1.0;
+    int omega_node = -1;
     int limited = 0;
     u_good = u_;
     for (int i = 0; i < n; ++i) {
@@ -705,7 +724,10 @@ SolveReport FlowSolver::solve() {
       }
       u_[i] = un;
       if (omega_i < 1.0) ++limited;
-      omega_min = std::min(omega_min, omega_i);
+      if (omega_i < omega_min) {
+        omega_min = omega_i;
+        omega_node = i;
+      }
     }
     apply_strong_conditions(u_);
     if (settings_.turbulent) rec.turbulence_residual = turbulence_step(cfl);
@@ -736,7 +758,11 @@ SolveReport FlowSolver::solve() {
       for (int i = 1; i < n; ++i) {
         if (std::abs(res_[i][0]) / dual_.volume[i] > std::abs(res_[worst][0]) / dual_.volume[worst]) worst = i;
       }
-      std::fprintf(stderr, "  max at (%.4g, %.4g)\n", dual_.coords[worst].x, dual_.coords[worst].y);
+      std::fprintf(stderr, "  max at (%.4g, %.4g)", dual_.coords[worst].x, dual_.coords[worst].y);
+      if (omega_node >= 0) {
+        std::fprintf(stderr, "  omega min at (%.4g, %.4g)", dual_.coords[omega_node].x, dual_.coords[omega_node].y);
+      }
+      std::fprintf(stderr, "\n");
     }
     if (report.backoffs > 20) break;
     // Give up when the CFL has collapsed: the pseudo-time march no longer moves.

@@ -145,6 +145,12 @@ class FlowSolver {
 
   SolveReport solve();
 
+  // Turns every adiabatic no-slip wall into an isothermal one at the current wall temperature
+  // minus `below` [K], node by node: the probe run of the heat transfer coefficient
+  // h = q_w / (T_aw - T_w) (see run.cpp).
+  void make_walls_isothermal(double below);
+  void set_residual_reference(double reference) { settings_.residual_reference = reference; }
+
   // Residual R(U) (flux balance, positive = net outflow) for the current state; per node.
   std::vector<State> residual();
   BoundaryIntegral boundary_integral(int curve);
@@ -159,6 +165,7 @@ class FlowSolver {
   void apply_strong_conditions(std::vector<State>& u) const;
   bool physical(const std::vector<State>& u) const;
   void update_eddy_viscosity();
+  double wall_temperature_at(int bc, int node) const;
   double turbulence_step(double cfl);  // returns the RMS of d nu_tilde / dt
   void set_freestream_nu_tilde();
   State residual_norm() const;
