@@ -61,6 +61,9 @@ int main(int argc, char** argv) {
                  "[-] converged when the density residual fell by this factor")->capture_default_str();
   app.add_option("--cfl-start", o.settings.cfl_start, "[-] initial CFL number")->capture_default_str();
   app.add_option("--cfl-max", o.settings.cfl_max, "[-] largest CFL number of the ramp")->capture_default_str();
+  app.add_option("--cfl-stall-iterations", o.settings.cfl_stall_iterations,
+                 "halve the CFL ceiling after this many iterations without a new residual minimum (0: never)")
+      ->capture_default_str();
   app.add_option("--linear-tolerance", o.settings.linear_tolerance,
                  "[-] relative GMRES tolerance per nonlinear iteration")
       ->capture_default_str();
