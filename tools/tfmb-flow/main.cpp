@@ -64,6 +64,8 @@ int main(int argc, char** argv) {
   app.add_option("--cfl-stall-iterations", o.settings.cfl_stall_iterations,
                  "halve the CFL ceiling after this many iterations without a new residual minimum (0: never)")
       ->capture_default_str();
+  app.add_flag("--exact-jacobian", o.settings.exact_jacobian,
+               "first-order Roe Jacobian by finite differences (dissipation included) instead of frozen dissipation");
   app.add_option("--linear-tolerance", o.settings.linear_tolerance,
                  "[-] relative GMRES tolerance per nonlinear iteration")
       ->capture_default_str();

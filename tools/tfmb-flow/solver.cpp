@@ -477,7 +477,26 @@ void FlowSolver::assemble_jacobian(const std::vector<double>& diag_scale) {
     const int j = dual_.edges[e][1];
     const Vec2 n_e = dual_.edge_normal[e];
     RoeFluxJacobians jac;
-    roe_flux(gas_, w_[i], w_[j], n_e.x, n_e.y, settings_.entropy_fix, &jac);
+    if (settings_.exact_jacobian) {
+      // one-sided differences in the conservative variables of each side
+      const State f0 = roe_flux(gas_, w_[i], w_[j], n_e.x, n_e.y, settings_.entropy_fix);
+      for (int side = 0; side < 2; ++side) {
+        const State& u0 = side == 0 ? u_[i] : u_[j];
+        Block& d = side == 0 ? jac.d_left : jac.d_right;
+        for (int c = 0; c < 4; ++c) {
+          State up = u0;
+          const double scale = (c == 1 || c == 2) ? std::sqrt(u0[0] * u0[3]) : 0.0;
+          const double h = 1e-7 * (std::abs(u0[c]) + scale);
+          up[c] += h;
+          const State wp = gas_.primitive(up);
+          const State f1 = side == 0 ? roe_flux(gas_, wp, w_[j], n_e.x, n_e.y, settings_.entropy_fix)
+                                     : roe_flux(gas_, w_[i], wp, n_e.x, n_e.y, settings_.entropy_fix);
+          for (int r = 0; r < 4; ++r) d[4 * r + c] = (f1[r] - f0[r]) / h;
+        }
+      }
+    } else {
+      roe_flux(gas_, w_[i], w_[j], n_e.x, n_e.y, settings_.entropy_fix, &jac);
+    }
     if (viscous) {
       double c = 0.0;
       const bool axi = dual_.geometry == Geometry::axisymmetric;

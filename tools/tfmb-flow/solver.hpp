@@ -65,6 +65,9 @@ struct SolverSettings {
   double max_relative_update = 0.5;  // largest relative change of rho or p per node and iteration
   // Fraction of nodes whose update may be relaxed without slowing the CFL ramp.
   double relaxed_fraction_tolerated = 0.002;
+  // First-order Jacobian of the Roe flux: frozen dissipation (default) or by finite differences
+  // of the full Roe flux, dissipation included (twice the assembly cost).
+  bool exact_jacobian = false;
   int print_every = 0;            // residual line on stderr every N iterations (0: silent)
   bool viscous = false;
   ViscousModel viscosity;
