@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -65,7 +66,10 @@ enum class JointKind {
   revolute,    // hinge about `axis`; relative rotation phi is an extra unknown
   clearance,   // revolute with radial clearance: pin on node_b in a hole on node_a
   planar,      // keeps node_b in the x-y plane (z, rotations about x and y held)
+  flexible,    // bushing: elastic energy of the relative motion of node_b (handle l) w.r.t. node_a (k)
 };
+
+struct FlexibleJointLaw;  // flexible_joint.hpp
 
 /// Joint data. node_a = -1 means the ground (a fixed frame).
 struct JointSpec {
@@ -89,6 +93,8 @@ struct JointSpec {
   double contact_stiffness = 0.0; // [N/m] penalty
   double friction_coefficient = 0.0;
   double friction_regularisation_speed = 1e-3;  // [m/s]
+  // flexible options: stiffness, measures, joint frame (required for kind flexible)
+  std::shared_ptr<const FlexibleJointLaw> flexible_law;
 };
 
 struct Model {
