@@ -131,17 +131,105 @@ TEST(Stage, DynamicRunWritesHistory) {
   EXPECT_EQ(r.read_vector("/history/time").size(), 20u);
 }
 
-TEST(Stage, UnsupportedJointKindIsBadInput) {
+/// Two 1 m cantilevers in line (flaps "sample" and "second") joined at x = 1 m by a flexible joint
+/// with diagonal stiffness, the first clamped at its start.
+fs::path write_flexible_model(const fs::path& dir, const std::string& measure_functions,
+                              const std::vector<std::vector<double>>& mu_terms = {}) {
+  fs::create_directories(dir / "single");
+  const fs::path single = write_cantilever_model(dir / "single", "flexible");
+  const h5::Reader r(single);
+  formats::Document doc = formats::read_document(r);
+  const auto datasets = doc.datasets;
+  for (const auto& [path, value] : datasets) {
+    if (path.rfind("/flaps/sample/", 0) != 0) continue;
+    formats::DatasetValue v = value;
+    const std::string name = path.substr(std::string("/flaps/sample/").size());
+    if (v.shape.size() == 2 && v.shape[1] == 2)
+      for (size_t i = 0; i < v.shape[0]; ++i) v.floats[2 * i] += kLength;  // x shifted by L
+    doc.datasets["/flaps/second/" + name] = v;
+  }
+  const auto attributes = doc.attributes;
+  for (const auto& [path, values] : attributes)
+    if (path == "/flaps/sample" || path.rfind("/flaps/sample/", 0) == 0)
+      doc.attributes["/flaps/second" + path.substr(std::string("/flaps/sample").size())] = values;
+  doc.attributes["/flaps/second"]["order"].integer = 1;
+  doc.groups.insert("/flaps/second");
+  // The joint is "bushing": supports are written under /joints of structure.h5 as well.
+  for (auto* m : {&doc.datasets}) {
+    const auto copy = *m;
+    for (const auto& [path, v] : copy)
+      if (path.rfind("/joints/sample/", 0) == 0) {
+        (*m)["/joints/bushing/" + path.substr(15)] = v;
+        m->erase(path);
+      }
+  }
+  {
+    const auto copy = doc.attributes;
+    for (const auto& [path, v] : copy)
+      if (path == "/joints/sample" || path.rfind("/joints/sample/", 0) == 0) {
+        doc.attributes["/joints/bushing" + path.substr(14)] = v;
+        doc.attributes.erase(path);
+      }
+    doc.groups.erase("/joints/sample");
+    doc.groups.insert("/joints/bushing");
+  }
+  auto& j = doc.attributes["/joints/bushing"];
+  j["flap_a"].text = "sample";
+  j["end_a"].text = "end";
+  j["flap_b"].text = "second";
+  j["end_b"].text = "start";
+  j["measure_functions"].text = measure_functions;
+  doc.datasets["/joints/bushing/point"].floats = {kLength, 0.0};
+  std::vector<std::vector<double>> d(6, std::vector<double>(6, 0.0));
+  const double diag[6] = {1e4, 1e3, 1e3, 50.0, 50.0, 1e2};
+  for (int i = 0; i < 6; ++i) d[i][i] = diag[i];
+  set_matrix(doc.datasets["/joints/bushing/stiffness_matrix"], d);
+  set_matrix(doc.datasets["/joints/bushing/lambda_terms"], {{0.0, 0.0, 0.0}});
+  set_matrix(doc.datasets["/joints/bushing/mu_terms"], mu_terms.empty() ? std::vector<std::vector<double>>{{1.0, 0.0, 0.0}} : mu_terms);
+  const fs::path file = dir / "model.h5";
+  formats::write_document(doc, file);
+  return file;
+}
+
+// A tip force P (-y) on two beams joined by a flexible joint: at small load the tip deflection is
+// the 2 m cantilever's P (2L)^3/(3 EI) + P 2L/GA plus the joint's translation P/k_y and its rotation
+// (P L/k_rz) times the lever L. The file carries the joint's stretch and wryness.
+TEST(Stage, FlexibleJointInLine) {
   const fs::path dir = scratch("flexible");
   beam::Options o;
-  o.model = write_cantilever_model(dir, "flexible");
+  o.model = write_flexible_model(dir, "default");
+  const double p = 1e-3;
+  o.point_loads = {"second:end:0,-" + std::to_string(p)};
+  o.output = dir / "structure.h5";
+  const Logger log("tfmb-beam", Verbosity::quiet);
+  EXPECT_EQ(beam::run(o, log), 0);
+  const h5::Reader r = formats::open_checked(o.output, "structure");
+  const h5::MatrixXdR u = r.read_matrix("/fields/point/displacement");
+  const auto nodes = r.read_index_vector("/flaps/second/nodes", 7, 0, u.rows());
+  const auto tip = static_cast<Eigen::Index>(nodes.back());
+  const double l2 = 2 * kLength;
+  const double exact = p * l2 * l2 * l2 / (3 * kEI) + p * l2 / kGA + p / 1e3 + p * kLength * kLength / 1e2;
+  EXPECT_NEAR(-u(tip, 1), exact, 1e-5 * exact);
+  const auto e = r.read_vector("/joints/bushing/deformation");
+  ASSERT_EQ(e.size(), 6u);
+  EXPECT_NEAR(e[1], -p / 1e3, 1e-5 * p / 1e3);        // stretch across the joint
+  EXPECT_NEAR(e[5], -p * kLength / 1e2, 1e-5 * p);   // wryness about z
+  const auto reaction = r.read_vector("/joints/bushing/reaction");  // on the "second" end
+  EXPECT_NEAR(reaction[1], p, 1e-9);
+}
+
+// Choices of lambda and mu that break the seed's small-motion limits are bad input (exit 3).
+TEST(Stage, FlexibleJointMeasureLimitsAreChecked) {
+  const fs::path dir = scratch("flexible-limits");
+  beam::Options o;
+  o.model = write_flexible_model(dir, "custom", {{2.0, 0.0, 0.0}, {1.0, 0.0, 2.0}});
   o.output = dir / "structure.h5";
   const Logger log("tfmb-beam", Verbosity::quiet);
   try {
     beam::run(o, log);
     FAIL() << "expected BadInput";
   } catch (const BadInput& e) {
-    EXPECT_NE(std::string(e.what()).find("flexible"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("mu -> 1"), std::string::npos) << e.what();
   }
   EXPECT_FALSE(fs::exists(o.output));
 }

@@ -237,8 +237,31 @@ JointSpec read_joint(const toml::table& table, int index, const std::filesystem:
     j.stiffness_matrix = to_matrix6(keys.matrix("stiffness_matrix", 6, 6, "N/m, N m/rad"));
     j.deformation_measure = keys.text("deformation_measure", std::string("proposed"),
                                       {"proposed", "typical"});
-    j.measure_lambda = keys.number("measure_lambda", 0.0, -kInf, kInf, "1");
-    j.measure_mu = keys.number("measure_mu", 1.0, -kInf, kInf, "1");
+    std::vector<std::string> names{"default", "custom"};
+    for (char r = '1'; r <= '4'; ++r)
+      for (char c = 'a'; c <= 'd'; ++c) names.push_back(std::string{r, c});
+    j.measure_functions = keys.text("measure_functions", std::string("default"), names);
+    if (j.measure_functions == "custom") {
+      // Polynomial terms [coefficient, power of sigma, power of |p|]; the seed's small-motion
+      // limits (its eqs. 18, 19): mu -> 1 and lambda -> 0, i.e. the constant terms sum to 1 and 0.
+      auto terms = [&](const char* key, double limit, const char* why) {
+        const Eigen::MatrixXd t = keys.has(key) ? keys.matrix(key, 0, 3, "1, 1, 1") : Eigen::MatrixXd(0, 3);
+        double constant = 0.0;
+        for (Eigen::Index r = 0; r < t.rows(); ++r) {
+          for (int c : {1, 2})
+            if (!(t(r, c) >= 0.0) || t(r, c) != std::floor(t(r, c)))
+              keys.fail(key, "row " + std::to_string(r) + ": powers must be integers >= 0");
+          if (static_cast<long>(t(r, 2)) % 2 != 0)
+            keys.fail(key, "row " + std::to_string(r) + ": odd power of |p| is not differentiable at zero rotation; use even powers");
+          if (t(r, 1) == 0.0 && t(r, 2) == 0.0) constant += t(r, 0);
+        }
+        if (std::abs(constant - limit) > 1e-12)
+          keys.fail(key, "tends to " + std::to_string(constant) + " for small motion; " + why);
+        return Eigen::MatrixX3d(t);
+      };
+      j.lambda_terms = terms("measure_lambda_terms", 0.0, "the seed's eq. (19) requires lambda -> 0");
+      j.mu_terms = terms("measure_mu_terms", 1.0, "the seed's eq. (18) requires mu -> 1");
+    }
   } else if (j.kind == "prescribed_rotation") {
     const Eigen::MatrixXd table_rows = keys.matrix("rotation", 0, 2, "s, rad");
     if (table_rows.rows() < 1) keys.fail("rotation", "needs at least one [time, angle] row");
