@@ -173,3 +173,12 @@ TEST(BadInput, FlexibleJointMeasureFunctions) {
   EXPECT_EQ(o.exit_code, 3);
   EXPECT_NE(o.stderr_text.find("odd power"), std::string::npos) << o.stderr_text;
 }
+
+// Joints and supports share /joints in structure.h5: a support named like a joint is refused.
+TEST(BadInput, SupportNamedLikeAJoint) {
+  const auto dir = scratch_dir("input-names");
+  const auto r = run_case(dir, two_flap_csv("1,0.5"),
+                          case_text("g.csv") + "[[support]]\nname = \"hinge\"\nflap = \"a\"\nend = \"start\"\nkind = \"clamp\"\n");
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_NE(r.stderr_text.find("'hinge' is already used"), std::string::npos) << r.stderr_text;
+}

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <set>
 #include <sstream>
 #include <toml++/toml.h>
@@ -371,6 +372,20 @@ CaseSpec read_case(const std::filesystem::path& file, const std::vector<std::str
   if (const toml::array* a = top.array_of_tables("support")) {
     int i = 0;
     for (const auto& node : *a) spec.supports.push_back(read_support(*node.as_table(), i++, file));
+  }
+  {
+    // Joints and supports share /joints of structure.h5 (their reactions), so their names must
+    // differ from each other.
+    std::map<std::string, int> seen;  // name -> line
+    auto claim = [&](const std::string& name, int line, const char* what) {
+      const auto [it, fresh] = seen.emplace(name, line);
+      if (!fresh)
+        throw BadInput(file.string() + ":" + std::to_string(line) + ": " + what + " name '" + name +
+                       "' is already used on line " + std::to_string(it->second) +
+                       " (joints and supports need distinct names)");
+    };
+    for (const JointSpec& j : spec.joints) claim(j.joint.name, j.line, "joint");
+    for (const SupportSpec& s : spec.supports) claim(s.support.name, s.line, "support");
   }
   {
     static const toml::table empty;
