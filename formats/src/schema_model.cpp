@@ -3,7 +3,7 @@
 // 2.0: beam discretisation, full-resolution reference lines, joint parameters, domain
 // boundaries with kinds and order, solid outlines, thermal, mesh and analysis settings.
 // 2.1: flexible joints: measure_functions (+ lambda_terms, mu_terms) replace 2.0's constant
-// measure_lambda / measure_mu, which no tool read.
+// measure_lambda / measure_mu, which no tool read; joint kind prismatic with /axis.
 #include "schema_rules.hpp"
 
 namespace tfmb::formats::detail {
@@ -59,7 +59,7 @@ Schema model_schema() {
   // Joints.
   s.attributes.push_back(sattr("/joints/*", "kind", "joint kind",
                                {"rigid", "revolute", "revolute_spring", "revolute_clearance",
-                                "flexible", "prescribed_rotation"}));
+                                "flexible", "prescribed_rotation", "prismatic"}));
   s.attributes.push_back(sattr("/joints/*", "flap_a", "first flap"));
   s.attributes.push_back(sattr("/joints/*", "end_a", "end of the first flap", {"start", "end"}));
   s.attributes.push_back(sattr("/joints/*", "flap_b", "second flap"));
@@ -90,6 +90,7 @@ Schema model_schema() {
                            "flexible, custom: lambda terms (coefficient, power of sigma, power of the rotation parameter magnitude p) (2.1)", false));
   s.datasets.push_back(f64("/joints/*/mu_terms", {"nm", "3"}, "1",
                            "flexible, custom: mu terms (coefficient, power of sigma, power of the rotation parameter magnitude p) (2.1)", false));
+  s.datasets.push_back(f64("/joints/*/axis", {"2"}, "1", "prismatic: sliding direction (2.1)", false));
   s.datasets.push_back(f64("/joints/*/rotation_table", {"nt", "2"}, "s, rad",
                            "prescribed_rotation: rows (time, relative rotation angle)", false));
   // Supports.

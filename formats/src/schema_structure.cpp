@@ -30,6 +30,7 @@ Schema structure_schema() {
   s.datasets.push_back(f64("/joints/*/deformation", {"6"}, "m, 1",
                            "flexible joints: stretch (3) and wryness (3) in the joint frame (1.2)", false));
   s.datasets.push_back(f64("/joints/*/strain_energy", {"1"}, "J", "flexible joints (1.2)", false));
+  s.datasets.push_back(f64("/joints/*/sliding", {"1"}, "m", "prismatic joints: relative displacement along the axis (1.2)", false));
   s.datasets.push_back(f64("/history/time", {"T"}, "s", "dynamic analysis", false));
   s.datasets.push_back(f64("/history/displacement", {"T", "N", "3"}, "m", "", false));
   s.datasets.push_back(f64("/modes/frequency", {"M"}, "Hz", "modal analysis: natural frequencies", false));

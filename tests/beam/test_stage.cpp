@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <functional>
 #include <fstream>
 
 #include "tfmb/beam/run.hpp"
@@ -131,12 +132,12 @@ TEST(Stage, DynamicRunWritesHistory) {
   EXPECT_EQ(r.read_vector("/history/time").size(), 20u);
 }
 
-/// Two 1 m cantilevers in line (flaps "sample" and "second") joined at x = 1 m by a flexible joint
-/// with diagonal stiffness, the first clamped at its start.
-fs::path write_flexible_model(const fs::path& dir, const std::string& measure_functions,
-                              const std::vector<std::vector<double>>& mu_terms = {}) {
+/// Two 1 m flaps in line ("sample" and "second") joined at x = 1 m by the joint "bushing" of
+/// `kind`, the first clamped at its start; `edit` sets the joint's data.
+fs::path write_two_flap_model(const fs::path& dir, const std::string& kind,
+                              const std::function<void(formats::Document&)>& edit) {
   fs::create_directories(dir / "single");
-  const fs::path single = write_cantilever_model(dir / "single", "flexible");
+  const fs::path single = write_cantilever_model(dir / "single", kind);
   const h5::Reader r(single);
   formats::Document doc = formats::read_document(r);
   const auto datasets = doc.datasets;
@@ -178,17 +179,26 @@ fs::path write_flexible_model(const fs::path& dir, const std::string& measure_fu
   j["end_a"].text = "end";
   j["flap_b"].text = "second";
   j["end_b"].text = "start";
-  j["measure_functions"].text = measure_functions;
   doc.datasets["/joints/bushing/point"].floats = {kLength, 0.0};
-  std::vector<std::vector<double>> d(6, std::vector<double>(6, 0.0));
-  const double diag[6] = {1e4, 1e3, 1e3, 50.0, 50.0, 1e2};
-  for (int i = 0; i < 6; ++i) d[i][i] = diag[i];
-  set_matrix(doc.datasets["/joints/bushing/stiffness_matrix"], d);
-  set_matrix(doc.datasets["/joints/bushing/lambda_terms"], {{0.0, 0.0, 0.0}});
-  set_matrix(doc.datasets["/joints/bushing/mu_terms"], mu_terms.empty() ? std::vector<std::vector<double>>{{1.0, 0.0, 0.0}} : mu_terms);
+  edit(doc);
   const fs::path file = dir / "model.h5";
   formats::write_document(doc, file);
   return file;
+}
+
+/// The two flaps joined by a flexible joint with diagonal stiffness.
+fs::path write_flexible_model(const fs::path& dir, const std::string& measure_functions,
+                              const std::vector<std::vector<double>>& mu_terms = {}) {
+  return write_two_flap_model(dir, "flexible", [&](formats::Document& doc) {
+    doc.attributes["/joints/bushing"]["measure_functions"].text = measure_functions;
+    std::vector<std::vector<double>> d(6, std::vector<double>(6, 0.0));
+    const double diag[6] = {1e4, 1e3, 1e3, 50.0, 50.0, 1e2};
+    for (int i = 0; i < 6; ++i) d[i][i] = diag[i];
+    set_matrix(doc.datasets["/joints/bushing/stiffness_matrix"], d);
+    set_matrix(doc.datasets["/joints/bushing/lambda_terms"], {{0.0, 0.0, 0.0}});
+    set_matrix(doc.datasets["/joints/bushing/mu_terms"],
+               mu_terms.empty() ? std::vector<std::vector<double>>{{1.0, 0.0, 0.0}} : mu_terms);
+  });
 }
 
 // A tip force P (-y) on two beams joined by a flexible joint: at small load the tip deflection is
@@ -232,6 +242,46 @@ TEST(Stage, FlexibleJointMeasureLimitsAreChecked) {
     EXPECT_NE(std::string(e.what()).find("mu -> 1"), std::string::npos) << e.what();
   }
   EXPECT_FALSE(fs::exists(o.output));
+}
+
+// Prismatic joint through the file stage: the first flap clamped at x = 0, the second pinned at
+// x = 2 m, joined at x = 1 m by a slider along x (axial motion released), P down at the joint. A
+// propped cantilever with the load at mid-span: the pin carries 5P/16, so the joint passes
+// -5P/16 (and the moment 5PL/16) to the second flap; nothing loads the slider axially.
+TEST(Stage, PrismaticJointReactions) {
+  const fs::path dir = scratch("prismatic");
+  beam::Options o;
+  o.model = write_two_flap_model(dir, "prismatic", [](formats::Document& doc) {
+    formats::DatasetValue axis = doc.datasets["/joints/bushing/point"];
+    axis.floats = {1.0, 0.0};
+    doc.datasets["/joints/bushing/axis"] = axis;
+    doc.attributes["/joints/bushing/axis"]["units"].text = "1";
+    const auto support = doc.attributes["/supports/sample"];
+    doc.attributes["/supports/far"] = support;
+    doc.attributes["/supports/far"]["flap"].text = "second";
+    doc.attributes["/supports/far"]["end"].text = "end";
+    doc.attributes["/supports/far"]["kind"].text = "pinned";
+    doc.groups.insert("/supports/far");
+    doc.datasets["/supports/far/point"] = doc.datasets["/supports/sample/point"];
+    doc.datasets["/supports/far/point"].floats = {2 * kLength, 0.0};
+    doc.attributes["/supports/far/point"] = doc.attributes["/supports/sample/point"];
+  });
+  const double p = 1e-3;
+  o.point_loads = {"sample:end:0,-" + std::to_string(p)};
+  o.output = dir / "structure.h5";
+  const Logger log("tfmb-beam", Verbosity::quiet);
+  EXPECT_EQ(beam::run(o, log), 0);
+  const h5::Reader r = formats::open_checked(o.output, "structure");
+  const auto joint = r.read_vector("/joints/bushing/reaction");
+  const auto pin = r.read_vector("/joints/far/reaction");
+  // Shear deformation (EI/(GA L^2) = 1e-4) moves the reactions by ~1e-4 relative.
+  EXPECT_NEAR(pin[1], 5.0 * p / 16.0, 1e-3 * p);
+  EXPECT_NEAR(joint[1], -5.0 * p / 16.0, 1e-3 * p);
+  EXPECT_NEAR(std::abs(joint[5]), 5.0 * p * kLength / 16.0, 1e-3 * p * kLength);
+  // The slider's lateral force turns with the flap end (rotation ~1e-6 rad): a global x component
+  // of ~1e-10 N, no force along the axis.
+  EXPECT_NEAR(joint[0], 0.0, 1e-6 * p);
+  EXPECT_NEAR(r.read_vector("/joints/bushing/sliding")[0], 0.0, 1e-12);
 }
 
 // materials.h5: uniform thermal strain lengthens the free cantilever by eps L; a thermal

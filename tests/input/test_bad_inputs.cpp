@@ -182,3 +182,20 @@ TEST(BadInput, SupportNamedLikeAJoint) {
   EXPECT_EQ(r.exit_code, 3);
   EXPECT_NE(r.stderr_text.find("'hinge' is already used"), std::string::npos) << r.stderr_text;
 }
+
+// Prismatic joints need their sliding direction.
+TEST(BadInput, PrismaticJointAxis) {
+  auto prismatic = [](const std::string& extra) {
+    std::string t = case_text("g.csv", "", extra);
+    t.replace(t.find("kind = \"revolute\""), 17, "kind = \"prismatic\"");
+    return t;
+  };
+  const auto good = scratch_dir("input-prismatic-good");
+  const auto r = run_case(good, two_flap_csv("1,0.5"), prismatic("axis = [1, 0.1]\n"));
+  EXPECT_EQ(r.exit_code, 0) << r.stderr_text;
+  EXPECT_EQ(run_tool("tfmb-check --no-summary " + (good / "model.h5").string(), good).exit_code, 0);
+  const auto bad = scratch_dir("input-prismatic-bad");
+  const auto b = run_case(bad, two_flap_csv("1,0.5"), prismatic("axis = [0, 0]\n"));
+  EXPECT_EQ(b.exit_code, 3);
+  EXPECT_NE(b.stderr_text.find("axis"), std::string::npos) << b.stderr_text;
+}

@@ -216,7 +216,7 @@ JointSpec read_joint(const toml::table& table, int index, const std::filesystem:
   j.name = keys.text("name", std::nullopt);
   j.kind = keys.text("kind", std::nullopt,
                      {"rigid", "revolute", "revolute_spring", "revolute_clearance", "flexible",
-                      "prescribed_rotation"});
+                      "prescribed_rotation", "prismatic"});
   const auto flaps = keys.strings("flaps");
   if (flaps.size() != 2) keys.fail("flaps", "a joint connects exactly two flaps");
   j.flap_a = flaps[0];
@@ -263,6 +263,11 @@ JointSpec read_joint(const toml::table& table, int index, const std::filesystem:
       j.lambda_terms = terms("measure_lambda_terms", 0.0, "the seed's eq. (19) requires lambda -> 0");
       j.mu_terms = terms("measure_mu_terms", 1.0, "the seed's eq. (18) requires mu -> 1");
     }
+  } else if (j.kind == "prismatic") {
+    const Eigen::MatrixXd a = keys.matrix("axis", 1, 2, "1", true);
+    const Point axis(a(0, 0), a(0, 1));
+    if (!(axis.norm() > 1e-12)) keys.fail("axis", "the sliding direction has zero length");
+    j.axis = axis.normalized();
   } else if (j.kind == "prescribed_rotation") {
     const Eigen::MatrixXd table_rows = keys.matrix("rotation", 0, 2, "s, rad");
     if (table_rows.rows() < 1) keys.fail("rotation", "needs at least one [time, angle] row");

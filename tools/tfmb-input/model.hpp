@@ -52,7 +52,7 @@ struct Flap {
 struct Joint {
   std::string name;
   std::string kind;  // rigid | revolute | revolute_spring | revolute_clearance | flexible |
-                     // prescribed_rotation
+                     // prescribed_rotation | prismatic
   std::string flap_a, end_a, flap_b, end_b;  // ends: "start" | "end"
   Point point = Point::Zero();               // [m]
   double stiffness = 0.0;     // revolute_spring [N m/rad]
@@ -68,6 +68,7 @@ struct Joint {
   std::string measure_functions = "default";
   Eigen::MatrixX3d lambda_terms, mu_terms;     // flexible, custom: rows (coefficient, power of sigma, power of |p|)
   Eigen::MatrixX2d rotation_table;             // prescribed_rotation: rows (time [s], angle [rad])
+  Point axis = Point::Zero();                  // prismatic: sliding direction (unit vector)
 };
 
 struct Support {

@@ -97,6 +97,8 @@ void write_model(const Model& model, const std::filesystem::path& file,
         w.write(g + "/lambda_terms", h5::MatrixXdR(j.lambda_terms), "1", "lambda: rows (coefficient, power of sigma, power of |p|)");
         w.write(g + "/mu_terms", h5::MatrixXdR(j.mu_terms), "1", "mu: rows (coefficient, power of sigma, power of |p|)");
       }
+    } else if (j.kind == "prismatic") {
+      w.write(g + "/axis", to_vector(j.axis), "1", "sliding direction");
     } else if (j.kind == "prescribed_rotation") {
       w.write(g + "/rotation_table", h5::MatrixXdR(j.rotation_table), "s, rad", "time, angle");
     }
@@ -248,6 +250,10 @@ Model read_model(const std::filesystem::path& file) {
     if (r.exists(g + "/mu_terms")) j.mu_terms = r.read_matrix(g + "/mu_terms", {}, 3);
     if (r.exists(g + "/stiffness_matrix")) j.stiffness_matrix = r.read_matrix(g + "/stiffness_matrix", 6, 6);
     if (r.exists(g + "/rotation_table")) j.rotation_table = r.read_matrix(g + "/rotation_table", {}, 2);
+    if (r.exists(g + "/axis")) {
+      const auto a = r.read_vector(g + "/axis", 2);
+      j.axis = Point(a[0], a[1]);
+    }
     for (const auto* flap : {&j.flap_a, &j.flap_b}) {
       if (!model.find_flap(*flap)) r.fail(g, "joint refers to unknown flap '" + *flap + "'");
     }

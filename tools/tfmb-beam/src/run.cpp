@@ -174,6 +174,12 @@ FileModel read_model(const Options& options) {
         j.hole_radius = opt("outer_radius");
         j.contact_stiffness = opt("contact_stiffness");
         j.friction_coefficient = opt("friction");
+      } else if (kind == "prismatic") {
+        j.kind = JointKind::prismatic;
+        if (!f.exists(g + "/axis")) f.fail(g, "a prismatic joint needs /axis");
+        const auto a = f.read_vector(g + "/axis", 2);
+        j.axis = Eigen::Vector3d(a[0], a[1], 0.0);
+        if (!(j.axis.norm() > 1e-12)) f.fail(g + "/axis", "zero sliding direction");
       } else if (kind == "flexible") {
         j.kind = JointKind::flexible;
         j.flexible_law = read_flexible_law(f, g);
@@ -386,6 +392,7 @@ void write_structure(const Options& options, const FileModel& fm, const Assembly
     if (get("relative_rotation", v)) w.write(g + "/relative_rotation", std::vector<double>{v}, "rad");
     if (get("contact_force", v)) w.write(g + "/contact_force", std::vector<double>{v}, "N");
     if (get("gap", v)) w.write(g + "/gap", std::vector<double>{v}, "m");
+    if (get("sliding", v)) w.write(g + "/sliding", std::vector<double>{v}, "m");
     if (m.joints[j].kind == JointKind::flexible) {
       std::vector<double> e(6, 0.0);
       const char* names[] = {"stretch_1", "stretch_2", "stretch_3", "wryness_1", "wryness_2", "wryness_3"};

@@ -10,6 +10,7 @@
 //   screw        cylindrical + (e2A.e1B) cos(phi) - (e1A.e1B) sin(phi) = 0 (phi the relative
 //                rotation, an extra unknown as in the revolute joint) + e3A.d - lead phi = 0 (6)
 // Reactions: the constraint force and moment the joint applies to node_b, -B_b^T lambda.
+// Planar models: the prismatic pair only, with its two in-plane equations.
 #include <cmath>
 #include <string>
 
@@ -33,12 +34,23 @@ class LowerPair final : public Joint {
  public:
   LowerPair(const Model& model, JointSpec spec) : Joint(std::move(spec)) {
     const std::string what = std::string(kind_name(spec_.kind)) + " joint '" + spec_.name + "'";
-    if (model.planar)
-      throw std::invalid_argument(what + ": lower pairs other than the revolute joint need a 3D model");
     if (spec_.axis.norm() < 1e-12) throw std::invalid_argument(what + ": axis has zero length");
     if (spec_.kind == JointKind::screw && !std::isfinite(spec_.screw_lead))
       throw std::invalid_argument(what + ": screw_lead must be finite [m/rad]");
-    const Eigen::Matrix3d e = frame_from_axis(spec_.axis);
+    Eigen::Matrix3d e = frame_from_axis(spec_.axis);
+    if (model.planar) {
+      // In the x-y plane only the slider is a new pair (a spherical or cylindrical joint is a
+      // revolute one there). Frame e2 = z, so e1A.d (in-plane lateral) and e3A.e1B (in-plane
+      // rotation) are its in-plane equations; the planar guides hold the rest.
+      if (spec_.kind != JointKind::prismatic)
+        throw std::invalid_argument(what + ": in a planar model only the prismatic pair is available (use a revolute joint)");
+      if (std::abs(spec_.axis.z()) > 1e-12 * spec_.axis.norm())
+        throw std::invalid_argument(what + ": in a planar model the sliding axis must lie in the x-y plane");
+      e.col(2) = spec_.axis.normalized();
+      e.col(1) = Eigen::Vector3d::UnitZ();
+      e.col(0) = e.col(1).cross(e.col(2));
+      keep_ = {0, 2};
+    }
     const Node& nb = model.nodes[spec_.node_b];
     frame_b_ = nb.frame.transpose() * e;
     if (spec_.node_a >= 0) {
@@ -53,6 +65,7 @@ class LowerPair final : public Joint {
     }
   }
   int num_equations() const override {
+    if (!keep_.empty()) return static_cast<int>(keep_.size());
     switch (spec_.kind) {
       case JointKind::spherical:
       case JointKind::planar_pair: return 3;
@@ -105,7 +118,7 @@ class LowerPair final : public Joint {
     }
     out.force.setZero(nv);
     out.stiffness.setZero(nv, nv);
-    fill_constraints<13>(phi, lambda, nv, out);
+    fill_constraints<13>(select(phi, keep_), lambda, nv, out);
   }
 
   std::vector<JointOutput> outputs(const JointContext& ctx, const Eigen::VectorXd& lambda) const override {
@@ -139,6 +152,7 @@ class LowerPair final : public Joint {
  private:
   Eigen::Matrix3d frame_a_, frame_b_;  // joint frame (e3 = axis) in each body's material frame
   Eigen::Vector3d ground_point_ = Eigen::Vector3d::Zero();
+  std::vector<int> keep_;  // planar models: the in-plane equations
 };
 
 }  // namespace
