@@ -2,6 +2,8 @@
 // (tools/tfmb-input/model_io.cpp), read by tfmb-mesh, tfmb-beam, tfmb-loads, tfmb-heat.
 // 2.0: beam discretisation, full-resolution reference lines, joint parameters, domain
 // boundaries with kinds and order, solid outlines, thermal, mesh and analysis settings.
+// 2.1: flexible joints: measure_functions (+ lambda_terms, mu_terms) replace 2.0's constant
+// measure_lambda / measure_mu, which no tool read; joint kind prismatic with /axis.
 #include "schema_rules.hpp"
 
 namespace tfmb::formats::detail {
@@ -57,7 +59,7 @@ Schema model_schema() {
   // Joints.
   s.attributes.push_back(sattr("/joints/*", "kind", "joint kind",
                                {"rigid", "revolute", "revolute_spring", "revolute_clearance",
-                                "flexible", "prescribed_rotation"}));
+                                "flexible", "prescribed_rotation", "prismatic"}));
   s.attributes.push_back(sattr("/joints/*", "flap_a", "first flap"));
   s.attributes.push_back(sattr("/joints/*", "end_a", "end of the first flap", {"start", "end"}));
   s.attributes.push_back(sattr("/joints/*", "flap_b", "second flap"));
@@ -76,13 +78,19 @@ Schema model_schema() {
                                0.0, 1.0, false));
   s.attributes.push_back(sattr("/joints/*", "deformation_measure", "flexible: deformation measures",
                                {"proposed", "typical"}, false));
-  s.attributes.push_back(nattr("/joints/*", "measure_lambda", "1", "flexible: lambda coefficient",
-                               std::nullopt, std::nullopt, false));
-  s.attributes.push_back(nattr("/joints/*", "measure_mu", "1", "flexible: mu coefficient",
-                               std::nullopt, std::nullopt, false));
+  s.attributes.push_back(sattr("/joints/*", "measure_functions",
+                               "flexible, proposed measures: lambda(sigma, p) and mu(sigma, p) (2.1)",
+                               {"default", "1a", "1b", "1c", "1d", "2a", "2b", "2c", "2d", "3a", "3b", "3c",
+                                "3d", "4a", "4b", "4c", "4d", "custom"},
+                               false));
   s.datasets.push_back(f64("/joints/*/point", {"2"}, "m", "joint location"));
   s.datasets.push_back(f64("/joints/*/stiffness_matrix", {"6", "6"}, "N/m, N m/rad",
                            "flexible: 6x6 stiffness (translations, rotations)", false));
+  s.datasets.push_back(f64("/joints/*/lambda_terms", {"nl", "3"}, "1",
+                           "flexible, custom: lambda terms (coefficient, power of sigma, power of the rotation parameter magnitude p) (2.1)", false));
+  s.datasets.push_back(f64("/joints/*/mu_terms", {"nm", "3"}, "1",
+                           "flexible, custom: mu terms (coefficient, power of sigma, power of the rotation parameter magnitude p) (2.1)", false));
+  s.datasets.push_back(f64("/joints/*/axis", {"2"}, "1", "prismatic: sliding direction (2.1)", false));
   s.datasets.push_back(f64("/joints/*/rotation_table", {"nt", "2"}, "s, rad",
                            "prescribed_rotation: rows (time, relative rotation angle)", false));
   // Supports.

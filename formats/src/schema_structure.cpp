@@ -4,7 +4,7 @@
 namespace tfmb::formats::detail {
 
 Schema structure_schema() {
-  Schema s{"structure", "tfmb/structure", 1, 1,
+  Schema s{"structure", "tfmb/structure", 1, 2,
            "beam solution: displacements, rotations, sectional strains and forces, joints",
            false, {}, {}};
   add_root(s, true);
@@ -27,6 +27,10 @@ Schema structure_schema() {
   s.datasets.push_back(f64("/joints/*/relative_rotation", {"*"}, "rad", "", false));
   s.datasets.push_back(f64("/joints/*/contact_force", {"*"}, "N", "clearance joints", false));
   s.datasets.push_back(f64("/joints/*/gap", {"*"}, "m", "clearance joints", false));
+  s.datasets.push_back(f64("/joints/*/deformation", {"6"}, "m, 1",
+                           "flexible joints: stretch (3) and wryness (3) in the joint frame (1.2)", false));
+  s.datasets.push_back(f64("/joints/*/strain_energy", {"1"}, "J", "flexible joints (1.2)", false));
+  s.datasets.push_back(f64("/joints/*/sliding", {"1"}, "m", "prismatic joints: relative displacement along the axis (1.2)", false));
   s.datasets.push_back(f64("/history/time", {"T"}, "s", "dynamic analysis", false));
   s.datasets.push_back(f64("/history/displacement", {"T", "N", "3"}, "m", "", false));
   s.datasets.push_back(f64("/modes/frequency", {"M"}, "Hz", "modal analysis: natural frequencies", false));

@@ -142,3 +142,60 @@ TEST(BadInput, StepWithoutCurves) {
   EXPECT_EQ(r.exit_code, 3);
   EXPECT_NE(r.stderr_text.find("points.step: the geometry holds no curves"), std::string::npos) << r.stderr_text;
 }
+
+// Flexible joints: lambda/mu choices are the seed's named ones or polynomial terms that keep its
+// small-motion limits (mu -> 1, lambda -> 0); anything else exits 3 naming the key.
+TEST(BadInput, FlexibleJointMeasureFunctions) {
+  auto flexible = [](const std::string& extra) {
+    std::string t = case_text("g.csv", "",
+                              "stiffness_matrix = [[1e3,0,0,0,0,0],[0,1e3,0,0,0,0],[0,0,1e3,0,0,0],"
+                              "[0,0,0,1e2,0,0],[0,0,0,0,1e2,0],[0,0,0,0,0,1e2]]\n" + extra);
+    t.replace(t.find("kind = \"revolute\""), 17, "kind = \"flexible\"");
+    return t;
+  };
+  const auto good = scratch_dir("input-flexible-good");
+  const auto r = run_case(good, two_flap_csv("1,0.5"), flexible("measure_functions = \"2c\"\n"));
+  EXPECT_EQ(r.exit_code, 0) << r.stderr_text;
+  const auto custom = scratch_dir("input-flexible-custom");
+  const auto c = run_case(custom, two_flap_csv("1,0.5"),
+                          flexible("measure_functions = \"custom\"\nmeasure_mu_terms = [[1, 0, 0], [0.5, 1, 2]]\n"));
+  EXPECT_EQ(c.exit_code, 0) << c.stderr_text;
+  EXPECT_EQ(run_tool("tfmb-check --no-summary " + (custom / "model.h5").string(), custom).exit_code, 0);
+  const auto bad = scratch_dir("input-flexible-bad");
+  const auto b = run_case(bad, two_flap_csv("1,0.5"),
+                          flexible("measure_functions = \"custom\"\nmeasure_mu_terms = [[2, 0, 0]]\n"));
+  EXPECT_EQ(b.exit_code, 3);
+  EXPECT_NE(b.stderr_text.find("measure_mu_terms"), std::string::npos) << b.stderr_text;
+  EXPECT_NE(b.stderr_text.find("mu -> 1"), std::string::npos) << b.stderr_text;
+  const auto odd = scratch_dir("input-flexible-odd");
+  const auto o = run_case(odd, two_flap_csv("1,0.5"),
+                          flexible("measure_functions = \"custom\"\nmeasure_mu_terms = [[1, 0, 0], [1, 0, 1]]\n"));
+  EXPECT_EQ(o.exit_code, 3);
+  EXPECT_NE(o.stderr_text.find("odd power"), std::string::npos) << o.stderr_text;
+}
+
+// Joints and supports share /joints in structure.h5: a support named like a joint is refused.
+TEST(BadInput, SupportNamedLikeAJoint) {
+  const auto dir = scratch_dir("input-names");
+  const auto r = run_case(dir, two_flap_csv("1,0.5"),
+                          case_text("g.csv") + "[[support]]\nname = \"hinge\"\nflap = \"a\"\nend = \"start\"\nkind = \"clamp\"\n");
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_NE(r.stderr_text.find("'hinge' is already used"), std::string::npos) << r.stderr_text;
+}
+
+// Prismatic joints need their sliding direction.
+TEST(BadInput, PrismaticJointAxis) {
+  auto prismatic = [](const std::string& extra) {
+    std::string t = case_text("g.csv", "", extra);
+    t.replace(t.find("kind = \"revolute\""), 17, "kind = \"prismatic\"");
+    return t;
+  };
+  const auto good = scratch_dir("input-prismatic-good");
+  const auto r = run_case(good, two_flap_csv("1,0.5"), prismatic("axis = [1, 0.1]\n"));
+  EXPECT_EQ(r.exit_code, 0) << r.stderr_text;
+  EXPECT_EQ(run_tool("tfmb-check --no-summary " + (good / "model.h5").string(), good).exit_code, 0);
+  const auto bad = scratch_dir("input-prismatic-bad");
+  const auto b = run_case(bad, two_flap_csv("1,0.5"), prismatic("axis = [0, 0]\n"));
+  EXPECT_EQ(b.exit_code, 3);
+  EXPECT_NE(b.stderr_text.find("axis"), std::string::npos) << b.stderr_text;
+}

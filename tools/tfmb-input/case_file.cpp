@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <set>
 #include <sstream>
 #include <toml++/toml.h>
@@ -215,7 +216,7 @@ JointSpec read_joint(const toml::table& table, int index, const std::filesystem:
   j.name = keys.text("name", std::nullopt);
   j.kind = keys.text("kind", std::nullopt,
                      {"rigid", "revolute", "revolute_spring", "revolute_clearance", "flexible",
-                      "prescribed_rotation"});
+                      "prescribed_rotation", "prismatic"});
   const auto flaps = keys.strings("flaps");
   if (flaps.size() != 2) keys.fail("flaps", "a joint connects exactly two flaps");
   j.flap_a = flaps[0];
@@ -237,8 +238,36 @@ JointSpec read_joint(const toml::table& table, int index, const std::filesystem:
     j.stiffness_matrix = to_matrix6(keys.matrix("stiffness_matrix", 6, 6, "N/m, N m/rad"));
     j.deformation_measure = keys.text("deformation_measure", std::string("proposed"),
                                       {"proposed", "typical"});
-    j.measure_lambda = keys.number("measure_lambda", 0.0, -kInf, kInf, "1");
-    j.measure_mu = keys.number("measure_mu", 1.0, -kInf, kInf, "1");
+    std::vector<std::string> names{"default", "custom"};
+    for (char r = '1'; r <= '4'; ++r)
+      for (char c = 'a'; c <= 'd'; ++c) names.push_back(std::string{r, c});
+    j.measure_functions = keys.text("measure_functions", std::string("default"), names);
+    if (j.measure_functions == "custom") {
+      // Polynomial terms [coefficient, power of sigma, power of |p|]; the seed's small-motion
+      // limits (its eqs. 18, 19): mu -> 1 and lambda -> 0, i.e. the constant terms sum to 1 and 0.
+      auto terms = [&](const char* key, double limit, const char* why) {
+        const Eigen::MatrixXd t = keys.has(key) ? keys.matrix(key, 0, 3, "1, 1, 1") : Eigen::MatrixXd(0, 3);
+        double constant = 0.0;
+        for (Eigen::Index r = 0; r < t.rows(); ++r) {
+          for (int c : {1, 2})
+            if (!(t(r, c) >= 0.0) || t(r, c) != std::floor(t(r, c)))
+              keys.fail(key, "row " + std::to_string(r) + ": powers must be integers >= 0");
+          if (static_cast<long>(t(r, 2)) % 2 != 0)
+            keys.fail(key, "row " + std::to_string(r) + ": odd power of |p| is not differentiable at zero rotation; use even powers");
+          if (t(r, 1) == 0.0 && t(r, 2) == 0.0) constant += t(r, 0);
+        }
+        if (std::abs(constant - limit) > 1e-12)
+          keys.fail(key, "tends to " + std::to_string(constant) + " for small motion; " + why);
+        return Eigen::MatrixX3d(t);
+      };
+      j.lambda_terms = terms("measure_lambda_terms", 0.0, "the seed's eq. (19) requires lambda -> 0");
+      j.mu_terms = terms("measure_mu_terms", 1.0, "the seed's eq. (18) requires mu -> 1");
+    }
+  } else if (j.kind == "prismatic") {
+    const Eigen::MatrixXd a = keys.matrix("axis", 1, 2, "1", true);
+    const Point axis(a(0, 0), a(0, 1));
+    if (!(axis.norm() > 1e-12)) keys.fail("axis", "the sliding direction has zero length");
+    j.axis = axis.normalized();
   } else if (j.kind == "prescribed_rotation") {
     const Eigen::MatrixXd table_rows = keys.matrix("rotation", 0, 2, "s, rad");
     if (table_rows.rows() < 1) keys.fail("rotation", "needs at least one [time, angle] row");
@@ -348,6 +377,20 @@ CaseSpec read_case(const std::filesystem::path& file, const std::vector<std::str
   if (const toml::array* a = top.array_of_tables("support")) {
     int i = 0;
     for (const auto& node : *a) spec.supports.push_back(read_support(*node.as_table(), i++, file));
+  }
+  {
+    // Joints and supports share /joints of structure.h5 (their reactions), so their names must
+    // differ from each other.
+    std::map<std::string, int> seen;  // name -> line
+    auto claim = [&](const std::string& name, int line, const char* what) {
+      const auto [it, fresh] = seen.emplace(name, line);
+      if (!fresh)
+        throw BadInput(file.string() + ":" + std::to_string(line) + ": " + what + " name '" + name +
+                       "' is already used on line " + std::to_string(it->second) +
+                       " (joints and supports need distinct names)");
+    };
+    for (const JointSpec& j : spec.joints) claim(j.joint.name, j.line, "joint");
+    for (const SupportSpec& s : spec.supports) claim(s.support.name, s.line, "support");
   }
   {
     static const toml::table empty;

@@ -52,7 +52,7 @@ struct Flap {
 struct Joint {
   std::string name;
   std::string kind;  // rigid | revolute | revolute_spring | revolute_clearance | flexible |
-                     // prescribed_rotation
+                     // prescribed_rotation | prismatic
   std::string flap_a, end_a, flap_b, end_b;  // ends: "start" | "end"
   Point point = Point::Zero();               // [m]
   double stiffness = 0.0;     // revolute_spring [N m/rad]
@@ -63,8 +63,12 @@ struct Joint {
   double friction = 0.0;           // revolute_clearance [1]
   Matrix6 stiffness_matrix = Matrix6::Zero();  // flexible: [N/m] (1-3), [N m/rad] (4-6)
   std::string deformation_measure;             // flexible: "proposed" | "typical"
-  double measure_lambda = 0.0, measure_mu = 1.0;  // flexible: coefficients (see model.md)
+  /// flexible: lambda(sigma, p) and mu(sigma, p) of the proposed measures: "default", the seed's
+  /// cases "1a" ... "4d", or "custom" with the polynomial terms below (model.md).
+  std::string measure_functions = "default";
+  Eigen::MatrixX3d lambda_terms, mu_terms;     // flexible, custom: rows (coefficient, power of sigma, power of |p|)
   Eigen::MatrixX2d rotation_table;             // prescribed_rotation: rows (time [s], angle [rad])
+  Point axis = Point::Zero();                  // prismatic: sliding direction (unit vector)
 };
 
 struct Support {

@@ -92,8 +92,13 @@ void write_model(const Model& model, const std::filesystem::path& file,
     } else if (j.kind == "flexible") {
       w.write(g + "/stiffness_matrix", h5::MatrixXdR(j.stiffness_matrix), "N/m, N m/rad", "joint stiffness");
       w.set_attr(g, "deformation_measure", j.deformation_measure);
-      w.set_attr(g, "measure_lambda", j.measure_lambda);
-      w.set_attr(g, "measure_mu", j.measure_mu);
+      w.set_attr(g, "measure_functions", j.measure_functions);
+      if (j.measure_functions == "custom") {
+        w.write(g + "/lambda_terms", h5::MatrixXdR(j.lambda_terms), "1", "lambda: rows (coefficient, power of sigma, power of |p|)");
+        w.write(g + "/mu_terms", h5::MatrixXdR(j.mu_terms), "1", "mu: rows (coefficient, power of sigma, power of |p|)");
+      }
+    } else if (j.kind == "prismatic") {
+      w.write(g + "/axis", to_vector(j.axis), "1", "sliding direction");
     } else if (j.kind == "prescribed_rotation") {
       w.write(g + "/rotation_table", h5::MatrixXdR(j.rotation_table), "s, rad", "time, angle");
     }
@@ -240,10 +245,15 @@ Model read_model(const std::filesystem::path& file) {
     if (r.has_attr(g, "contact_stiffness")) j.contact_stiffness = r.attr_f64(g, "contact_stiffness");
     if (r.has_attr(g, "friction")) j.friction = r.attr_f64(g, "friction");
     if (r.has_attr(g, "deformation_measure")) j.deformation_measure = r.attr_string(g, "deformation_measure");
-    if (r.has_attr(g, "measure_lambda")) j.measure_lambda = r.attr_f64(g, "measure_lambda");
-    if (r.has_attr(g, "measure_mu")) j.measure_mu = r.attr_f64(g, "measure_mu");
+    if (r.has_attr(g, "measure_functions")) j.measure_functions = r.attr_string(g, "measure_functions");
+    if (r.exists(g + "/lambda_terms")) j.lambda_terms = r.read_matrix(g + "/lambda_terms", {}, 3);
+    if (r.exists(g + "/mu_terms")) j.mu_terms = r.read_matrix(g + "/mu_terms", {}, 3);
     if (r.exists(g + "/stiffness_matrix")) j.stiffness_matrix = r.read_matrix(g + "/stiffness_matrix", 6, 6);
     if (r.exists(g + "/rotation_table")) j.rotation_table = r.read_matrix(g + "/rotation_table", {}, 2);
+    if (r.exists(g + "/axis")) {
+      const auto a = r.read_vector(g + "/axis", 2);
+      j.axis = Point(a[0], a[1]);
+    }
     for (const auto* flap : {&j.flap_a, &j.flap_b}) {
       if (!model.find_flap(*flap)) r.fail(g, "joint refers to unknown flap '" + *flap + "'");
     }

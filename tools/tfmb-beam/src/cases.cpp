@@ -71,4 +71,55 @@ Model seed_hinged_beams(double half_span, int n_elements, double load) {
   return m;
 }
 
+Model seed_flexible_joint_example1(FlexibleMeasure measure, bool swap_handles, int elements_per_beam) {
+  Model m;
+  m.sections.push_back(make_diagonal_section(43.50e6, 4.0e6, 2.81e6, 28.05e3, 23.26e3, 298.7e3));
+  const double length = 1.2;
+  const auto a = add_beam(
+      m, elements_per_beam, 0, [&](double s) { return Eigen::Vector3d(length * s, 0.0, 0.0); },
+      [](double) { return Eigen::Vector3d::UnitX(); });
+  const auto b = add_beam(
+      m, elements_per_beam, 0, [&](double s) { return Eigen::Vector3d(length * (1.0 + s), 0.0, 0.0); },
+      [](double) { return Eigen::Vector3d::UnitX(); });
+  JointSpec clamp;
+  clamp.kind = JointKind::clamp;
+  clamp.name = "root";
+  clamp.node_b = a.front();
+  auto law = std::make_shared<FlexibleJointLaw>();
+  law->stiffness.setZero();
+  law->stiffness.topLeftCorner<3, 3>() << 2000, 10, 10, 10, 2000, 10, 10, 10, 2000;
+  law->stiffness.diagonal().tail<3>().setConstant(1000.0);
+  law->measure = measure;
+  law->functions = seed_measure_functions("default");
+  JointSpec bushing;
+  bushing.kind = JointKind::flexible;
+  bushing.name = "bushing";
+  bushing.node_a = swap_handles ? b.front() : a.back();
+  bushing.node_b = swap_handles ? a.back() : b.front();
+  bushing.flexible_law = law;
+  m.joints = {clamp, bushing};
+  m.nodal_loads.push_back({b.back(), Eigen::Vector3d(500.0, 25.0, 200.0), Eigen::Vector3d::Zero(), false});
+  return m;
+}
+
+Model seed_flexible_joint_example2(const std::string& functions, const Eigen::Vector3d& rotational_stiffness) {
+  Model m;
+  Node node;
+  m.nodes.push_back(node);
+  auto law = std::make_shared<FlexibleJointLaw>();
+  law->stiffness.setZero();
+  law->stiffness.topLeftCorner<3, 3>() << 1000, 100, 100, 100, 1000, 100, 100, 100, 1000;
+  law->stiffness.diagonal().tail<3>() = rotational_stiffness;
+  law->functions = seed_measure_functions(functions);
+  JointSpec bushing;
+  bushing.kind = JointKind::flexible;
+  bushing.name = "bushing";
+  bushing.node_a = -1;
+  bushing.node_b = 0;
+  bushing.flexible_law = law;
+  m.joints = {bushing};
+  m.nodal_loads.push_back({0, Eigen::Vector3d(125.0, 250.0, 375.0), Eigen::Vector3d(125.0, 250.0, 375.0), false});
+  return m;
+}
+
 }  // namespace tfmb::beam::cases

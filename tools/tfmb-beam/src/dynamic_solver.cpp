@@ -58,12 +58,16 @@ double DynamicSolver::kinetic_energy() const {
 double DynamicSolver::potential_energy(const State& state, double time) const {
   double u = assembly_.strain_energy(state);
   const Model& m = assembly_.model();
-  for (const auto& j : assembly_.joints()) {
+  for (size_t k = 0; k < assembly_.joints().size(); ++k) {
+    const auto& j = assembly_.joints()[k];
     const JointSpec& s = j->spec();
     if (s.kind == JointKind::revolute && s.spring_stiffness != 0.0) {
       const double phi = state.joint_dofs(j->first_internal_dof() - assembly_.num_node_dofs());
       u += 0.5 * s.spring_stiffness * std::pow(phi - s.spring_rest_angle, 2);
     }
+    if (s.kind == JointKind::flexible)
+      for (const auto& o : assembly_.joint_outputs(state, static_cast<int>(k)))
+        if (o.name == "strain_energy") u += o.value;
   }
   // Dead loads: potential -F . (x - x0) with F the consistent nodal forces at the reference.
   Eigen::VectorXd r;

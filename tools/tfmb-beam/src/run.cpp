@@ -9,6 +9,7 @@
 #include "tfmb/beam/assembly.hpp"
 #include "tfmb/beam/dynamic_solver.hpp"
 #include "tfmb/beam/errors.hpp"
+#include "tfmb/beam/flexible_joint.hpp"
 #include "tfmb/beam/modal.hpp"
 #include "tfmb/beam/rotation_wm.hpp"
 #include "tfmb/beam/static_solver.hpp"
@@ -30,6 +31,45 @@ int end_node(const FileModel& fm, const h5::Reader& f, const std::string& flap, 
   const auto it = fm.flap_nodes.find(flap);
   if (it == fm.flap_nodes.end()) f.fail(where, "refers to flap '" + flap + "', which is not in /flaps");
   return end == "start" ? it->second.front() : it->second.back();
+}
+
+MeasureFunction read_terms(const h5::Reader& f, const std::string& path) {
+  MeasureFunction fn;
+  if (!f.exists(path)) return fn;  // no terms: identically zero
+  const h5::MatrixXdR t = f.read_matrix(path, {}, 3);
+  for (Eigen::Index r = 0; r < t.rows(); ++r) {
+    if (!(t(r, 1) >= 0.0 && t(r, 2) >= 0.0) || t(r, 1) != std::floor(t(r, 1)) || t(r, 2) != std::floor(t(r, 2)))
+      f.fail(path, "row " + std::to_string(r) + ": powers must be integers >= 0");
+    fn.terms.push_back({t(r, 0), static_cast<int>(t(r, 1)), static_cast<int>(t(r, 2))});
+  }
+  return fn;
+}
+
+/// Flexible joint of a planar model: stiffness in the global axes (x, y in the plane, z out of it).
+std::shared_ptr<const FlexibleJointLaw> read_flexible_law(const h5::Reader& f, const std::string& g) {
+  auto law = std::make_shared<FlexibleJointLaw>();
+  if (!f.exists(g + "/stiffness_matrix")) f.fail(g, "a flexible joint needs /stiffness_matrix");
+  law->stiffness = read_6x6(f, g + "/stiffness_matrix");
+  const std::string measure = f.has_attr(g, "deformation_measure") ? f.attr_string(g, "deformation_measure") : "proposed";
+  law->measure = measure == "typical" ? FlexibleMeasure::typical : FlexibleMeasure::proposed;
+  // Model 2.0 had constant coefficients that no tool read; refuse them rather than ignore them.
+  if ((f.has_attr(g, "measure_lambda") && f.attr_f64(g, "measure_lambda") != 0.0) ||
+      (f.has_attr(g, "measure_mu") && f.attr_f64(g, "measure_mu") != 1.0))
+    f.fail(g, "constant measure_lambda/measure_mu (model 2.0) are not supported; give measure_functions (model 2.1)");
+  const std::string name = f.has_attr(g, "measure_functions") ? f.attr_string(g, "measure_functions") : "default";
+  try {
+    if (name == "custom") {
+      law->functions.name = "custom";
+      law->functions.lambda = read_terms(f, g + "/lambda_terms");
+      law->functions.mu = read_terms(f, g + "/mu_terms");
+    } else {
+      law->functions = seed_measure_functions(name);
+    }
+    if (law->measure == FlexibleMeasure::proposed) check_measure_functions(law->functions);
+  } catch (const std::invalid_argument& e) {
+    f.fail(g, e.what());
+  }
+  return law;
 }
 
 }  // namespace
@@ -134,8 +174,17 @@ FileModel read_model(const Options& options) {
         j.hole_radius = opt("outer_radius");
         j.contact_stiffness = opt("contact_stiffness");
         j.friction_coefficient = opt("friction");
+      } else if (kind == "prismatic") {
+        j.kind = JointKind::prismatic;
+        if (!f.exists(g + "/axis")) f.fail(g, "a prismatic joint needs /axis");
+        const auto a = f.read_vector(g + "/axis", 2);
+        j.axis = Eigen::Vector3d(a[0], a[1], 0.0);
+        if (!(j.axis.norm() > 1e-12)) f.fail(g + "/axis", "zero sliding direction");
+      } else if (kind == "flexible") {
+        j.kind = JointKind::flexible;
+        j.flexible_law = read_flexible_law(f, g);
       } else {
-        f.fail(g, "joint kind '" + kind + "' is not supported by this tfmb-beam version (flexible joints: issue 7)");
+        f.fail(g, "joint kind '" + kind + "' is not supported by this tfmb-beam version");
       }
       // Coincident flap ends are required by the hinge joints.
       if (j.kind != JointKind::rigid &&
@@ -343,6 +392,14 @@ void write_structure(const Options& options, const FileModel& fm, const Assembly
     if (get("relative_rotation", v)) w.write(g + "/relative_rotation", std::vector<double>{v}, "rad");
     if (get("contact_force", v)) w.write(g + "/contact_force", std::vector<double>{v}, "N");
     if (get("gap", v)) w.write(g + "/gap", std::vector<double>{v}, "m");
+    if (get("sliding", v)) w.write(g + "/sliding", std::vector<double>{v}, "m");
+    if (m.joints[j].kind == JointKind::flexible) {
+      std::vector<double> e(6, 0.0);
+      const char* names[] = {"stretch_1", "stretch_2", "stretch_3", "wryness_1", "wryness_2", "wryness_3"};
+      for (int k = 0; k < 6; ++k) get(names[k], e[k]);
+      w.write(g + "/deformation", e, "m, 1", "stretch (3) and wryness (3) in the joint frame");
+      if (get("strain_energy", v)) w.write(g + "/strain_energy", std::vector<double>{v}, "J");
+    }
   }
   if (!times.empty()) {
     w.write("/history/time", times, "s");

@@ -231,4 +231,29 @@ StaticResult solve_arc_length(const Assembly& assembly, const State& initial, co
   return res;
 }
 
+std::vector<State> solve_at_load_factors(const Assembly& assembly, const State& initial,
+                                         const std::vector<double>& load_factors, const StaticOptions& options) {
+  std::vector<State> states;
+  State state = initial;
+  double reached = 0.0;
+  for (double target : load_factors) {
+    double step = target - reached;
+    int halvings = 0;
+    while (reached < target) {
+      const double next = std::min(target, reached + step);
+      State trial = state;
+      int iterations = 0;
+      if (newton_static(assembly, trial, next, options, iterations)) {
+        state = trial;
+        reached = next;
+      } else {
+        if (++halvings > options.max_cutbacks) return states;
+        step *= 0.5;
+      }
+    }
+    states.push_back(state);
+  }
+  return states;
+}
+
 }  // namespace tfmb::beam

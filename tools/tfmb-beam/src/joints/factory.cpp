@@ -26,6 +26,16 @@ std::unique_ptr<Joint> make_joint(const Model& model, const JointSpec& spec) {
       return detail::make_revolute(model, spec);
     case JointKind::planar:
       return detail::make_planar(model, spec);
+    case JointKind::flexible:
+      check_node(spec.node_a, true, "node_a");
+      return detail::make_flexible(model, spec);
+    case JointKind::spherical:
+    case JointKind::cylindrical:
+    case JointKind::prismatic:
+    case JointKind::screw:
+    case JointKind::planar_pair:
+      check_node(spec.node_a, true, "node_a");
+      return detail::make_lower_pair(model, spec);
     case JointKind::clearance:
       check_node(spec.node_a, true, "node_a");
       return detail::make_clearance(model, spec);

@@ -108,5 +108,7 @@ std::unique_ptr<Joint> make_rigid(const Model& model, const JointSpec& spec);
 std::unique_ptr<Joint> make_revolute(const Model& model, const JointSpec& spec);
 std::unique_ptr<Joint> make_clearance(const Model& model, const JointSpec& spec);
 std::unique_ptr<Joint> make_planar(const Model& model, const JointSpec& spec);
+std::unique_ptr<Joint> make_flexible(const Model& model, const JointSpec& spec);
+std::unique_ptr<Joint> make_lower_pair(const Model& model, const JointSpec& spec);
 
 }  // namespace tfmb::beam::detail

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -65,7 +66,17 @@ enum class JointKind {
   revolute,    // hinge about `axis`; relative rotation phi is an extra unknown
   clearance,   // revolute with radial clearance: pin on node_b in a hole on node_a
   planar,      // keeps node_b in the x-y plane (z, rotations about x and y held)
+  flexible,    // bushing: elastic energy of the relative motion of node_b (handle l) w.r.t. node_a (k)
+  // Lower pairs between node_a (or the ground) and node_b, coincident in the reference
+  // configuration, about/along `axis` (3D models only):
+  spherical,    // common point; rotation free
+  cylindrical,  // rotation about and sliding along the axis
+  prismatic,    // sliding along the axis only
+  screw,        // rotation phi about the axis (extra unknown) with sliding screw_lead * phi
+  planar_pair,  // node_b moves in the plane normal to the axis and turns about the axis only
 };
+
+struct FlexibleJointLaw;  // flexible_joint.hpp
 
 /// Joint data. node_a = -1 means the ground (a fixed frame).
 struct JointSpec {
@@ -89,6 +100,9 @@ struct JointSpec {
   double contact_stiffness = 0.0; // [N/m] penalty
   double friction_coefficient = 0.0;
   double friction_regularisation_speed = 1e-3;  // [m/s]
+  double screw_lead = 0.0;        // screw: sliding per radian of rotation [m/rad]
+  // flexible options: stiffness, measures, joint frame (required for kind flexible)
+  std::shared_ptr<const FlexibleJointLaw> flexible_law;
 };
 
 struct Model {

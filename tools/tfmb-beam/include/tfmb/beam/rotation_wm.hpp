@@ -118,9 +118,8 @@ Vec3<T> wm_inverse(const Vec3<T>& c) {
 }
 
 /// Replace c by its shadow -16 c/|c|^2 when |c| > 4: same rotation, |c| <= 4 (the other
-/// stereographic projection of the quaternion). Note: FORMULATION.md sec. 1 writes the shadow as
-/// c - 8 c/|c|, which is the rule for rotation vectors (angle - 2 pi), not for these parameters;
-/// the unit test checks the rotation is unchanged.
+/// stereographic projection of the quaternion; FORMULATION.md sec. 1). The unit test checks the
+/// rotation is unchanged.
 Eigen::Vector3d wm_rescale(const Eigen::Vector3d& c);
 
 /// Parameters (|c| <= 4) of a rotation tensor, through the unit quaternion: c = 4 qv/(1 + q0), q0 >= 0.

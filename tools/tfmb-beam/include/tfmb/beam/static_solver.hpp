@@ -41,6 +41,12 @@ struct StaticResult {
 /// (result.converged = false with the last converged state), throws ModelError for mechanisms.
 StaticResult solve_static(const Assembly& assembly, const State& initial, const StaticOptions& options = {});
 
+/// Converged states at the given increasing load factors, reached one after the other from
+/// `initial`; a level Newton does not reach directly is approached in halved sub-steps (up to
+/// options.max_cutbacks halvings). Returns fewer states than levels if a level cannot be reached.
+std::vector<State> solve_at_load_factors(const Assembly& assembly, const State& initial,
+                                         const std::vector<double>& load_factors, const StaticOptions& options = {});
+
 struct ArcLengthOptions {
   double initial_load_increment = 0.05;  // first step's load-factor increment (sets the arc length)
   double final_load_factor = 1.0;        // stop once the load factor reaches this ...

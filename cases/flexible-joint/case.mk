@@ -1,0 +1,15 @@
+# flexible-joint: the planar file stage (tfmb-input -> model.h5 -> tfmb-beam) with the in-plane
+# part of the seed's example-1 tip load at a = 9 (F1 = 500 N along the beams, F2 = 25 N across;
+# the out-of-plane F3 = 200 N has no place in a planar model), and the seed's two examples in 3D
+# through the beam library (tfmb-beam-flexible-joint-seed), whose CSV files and plots are kept in
+# cases/flexible-joint/results/ (README.md quotes their numbers).
+ANALYSIS = structure
+BEAM_OPTS = --point-load beam_2:end:500,25
+SEED_EXAMPLES ?= $(BIN)/tfmb-beam-flexible-joint-seed
+
+structure: seed-examples
+seed-examples:
+	@mkdir -p $(RUN)/logs $(CASE_DIR)/results
+	$(SEED_EXAMPLES) -o $(CASE_DIR)/results 2> >(tee $(RUN)/logs/seed-examples.log >&2)
+	/usr/bin/python3 $(CASE_DIR)/plot_seed_examples.py $(CASE_DIR)/results
+.PHONY: seed-examples
