@@ -20,8 +20,8 @@ SET += --set 'support=[{name="upper_duct",flap="upper_1",end="start",kind="clamp
 # Flow conditions of every configuration: the seed's NPR 5.423 and a stagnation temperature that
 # the Ti-6Al-4V strength tables cover (yield and ultimate strength to 810.9 K).
 SET += --set flow.nozzle_pressure_ratio=5.423 --set flow.stagnation_temperature=750
-# Flap sections: a 20 mm equivalent plate for a stiffened flap, as config1 and configs 3-5.
-SET += $(foreach f,upper_1 upper_2 upper_3 lower_1 lower_2 lower_3,--set flap.$(f).thickness=0.02)
+# Flap sections: a 10 mm equivalent plate for a stiffened flap, as config1.
+SET += $(foreach f,upper_1 upper_2 upper_3 lower_1 lower_2 lower_3,--set flap.$(f).thickness=0.01)
 # First-order convection: the second-order reconstruction of tfmb-flow does not yet converge on
 # nozzles discharging into a far field (flow issues); first order does on the coarse (SMOKE) mesh.
 FLOW_OPTS = --threads 2 --order 1
