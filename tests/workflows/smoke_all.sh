@@ -40,6 +40,9 @@ run_case() {  # name target [make variables...]
   echo "ok      $name ($secs s)"
 }
 run_case config1 oneway CASE=config1 FLOW="$flow"
+# config1 also writes the seed's nodal-force comparison.
+[ -s "$root/config1/nodal-forces.json" ] && [ -s "$root/config1/plots/nodal_forces.png" ] ||
+  { echo "FAIL    config1: no nodal-forces.json or plots/nodal_forces.png"; failed=1; }
 run_case config2 twoway CASE=config2 FLOW="$flow"
 run_case config2-dynamic twoway CASE=config2 EXCHANGE=dynamic FLOW="$flow"
 run_case config3 oneway CASE=config3 FLOW="$flow"
