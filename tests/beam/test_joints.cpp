@@ -156,6 +156,40 @@ TEST(Joints, ClearanceContactForce) {
   }
 }
 
+// Clearance joint carrying a body that nothing else holds (the config2 situation): a beam hinged
+// to the ground at one end, its other end a pin in a ground hole, loaded across at midspan. With
+// the gap open the beam turns freely about the hinge (a mechanism at the unloaded start); in
+// statics the joint's centring tangent must still let Newton find the contact equilibrium, and
+// that equilibrium must be the exact one (no force from the regularisation): by moments about the
+// hinge the contact force is P/2 and the pin sits at cr + P / (2 K) from the hole centre.
+TEST(Joints, ClearanceJointCarryingAFreeBodyInStatics) {
+  const double length = 1.0, cr = 2e-4, k_contact = 1e8, p = 1e3;
+  JointSpec hinge;
+  hinge.name = "hinge";
+  // Stiff in bending (midspan deflection P L^3 / 48 EI = 2 um): the bent beam's end does not
+  // move along x enough to tilt the contact normal (which would change |F| by 1/cos).
+  Model m = hinged_to_ground(length, 4, make_diagonal_section(1e9, 1e9, 1e9, 1e7, 1e7, 1e7), hinge);
+  const int tip = static_cast<int>(m.nodes.size()) - 1, mid = tip / 2;
+  JointSpec c;
+  c.kind = JointKind::clearance;
+  c.name = "pin";
+  c.node_a = -1;
+  c.node_b = tip;
+  c.axis = Eigen::Vector3d::UnitZ();
+  c.pin_radius = 0.004;
+  c.hole_radius = 0.004 + cr;
+  c.contact_stiffness = k_contact;
+  m.joints.push_back(c);
+  m.nodal_loads.push_back({mid, Eigen::Vector3d(0, -p, 0), Eigen::Vector3d::Zero(), false});
+  Assembly asmb(m);
+  const StaticResult r = solve_static(asmb, asmb.initial_state());
+  ASSERT_TRUE(r.converged);
+  const auto out = asmb.joint_outputs(r.state, 1);
+  EXPECT_NEAR(output(out, "contact_force"), 0.5 * p, 1e-6 * p);
+  EXPECT_NEAR(output(out, "eccentricity"), cr + 0.5 * p / k_contact, 1e-9);
+  EXPECT_LT(r.state.position[tip].y(), -cr);  // the gap closed downwards
+}
+
 // A beam held only by a frictionless ground hinge and loaded across is a mechanism: the solver
 // must say which motion is free instead of returning garbage.
 TEST(Joints, MechanismIsReportedWithTheFreeDirection) {

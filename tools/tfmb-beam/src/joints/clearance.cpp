@@ -4,6 +4,12 @@
 // radial clearance cr = Rh - Rp, then a penalty normal force F_n = K (e - cr) pushes it back
 // (compliant-contact option (b) of FORMULATION.md with exponent 1). In dynamics a regularised
 // Coulomb friction F_t = -mu F_n tanh(|v_t| / v_reg) v_t/|v_t| acts at the contact point.
+// Statics: inside an open gap nothing holds the pin, so a body carried only by the joint is a
+// mechanism until contact closes and the Newton tangent is singular at the unloaded start. The
+// static tangent therefore gets a weak centring stiffness, kStaticCentring times the contact
+// stiffness, on the pin eccentricity; the residual does not, so a converged solution is the
+// exact one (a modified Newton: the first corrections carry the pin across the gap to contact,
+// after which the contact stiffness dominates). Dynamics needs none: the mass holds the motion.
 #include <cmath>
 #include <string>
 
@@ -11,6 +17,8 @@
 
 namespace tfmb::beam::detail {
 namespace {
+
+constexpr double kStaticCentring = 1e-4;
 
 class Clearance final : public Joint {
  public:
@@ -81,6 +89,12 @@ class Clearance final : public Joint {
     fill_constraints<12>(phi, lambda, nv, out);
     const double cr = spec_.hole_radius - spec_.pin_radius;
     const H e2 = k.d.dot(k.d);
+    const bool statics = ctx.node_velocity == nullptr;
+    if (statics) {
+      const H centring = 0.5 * kStaticCentring * spec_.contact_stiffness * e2;
+      for (int p = 0; p < nv; ++p)
+        for (int q = 0; q < nv; ++q) out.stiffness(p, q) += centring.hess(p, q);
+    }
     if (std::sqrt(e2.v) <= cr) return;
     const H e = sqrt(e2);
     const H pen = e - cr;
