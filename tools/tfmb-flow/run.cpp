@@ -297,6 +297,12 @@ RunResult run(const RunOptions& o, const Logger& log) {
     vel(k, 0) = w[1];
     vel(k, 1) = w[2];
     vel(k, 2) = 0.0;
+    if (!(rho[k] > 0.0 && p[k] > 0.0 && std::isfinite(mach[k]) && std::isfinite(vel(k, 0) + vel(k, 1)))) {
+      // the solver only keeps physical states; never hand a non-physical field to the next stage
+      throw InternalError(o.output.string() + ": node " + std::to_string(k) +
+                          " has a non-physical final state (rho " + num(rho[k]) + ", p " + num(p[k]) +
+                          "); nothing written");
+    }
   }
   {
     h5::Writer w(o.output);

@@ -44,6 +44,9 @@ class ScopedThreads {
   int previous_ = 1;
 };
 
+// Smallest pressure accepted, relative to the total energy per volume rho E (see physical()).
+constexpr double kPressureFloor = 1e-10;
+
 inline void add_block(double* target, const Block& b, double s) {
   for (int k = 0; k < 16; ++k) target[k] += s * b[k];
 }
@@ -332,7 +335,9 @@ bool FlowSolver::physical(const std::vector<State>& u) const {
   for (const auto& s : u) {
     const double rho = s[0];
     const double p = (gas_.gamma - 1.0) * (s[3] - 0.5 * (s[1] * s[1] + s[2] * s[2]) / rho);
-    if (!(rho > 0.0) || !(p > 0.0) || !std::isfinite(p)) return false;
+    // p must stand clear of the round-off of rho E - rho |V|^2 / 2: a near-vacuum node whose
+    // pressure is cancellation noise is positive by one formula and negative by another
+    if (!(rho > 0.0) || !(p > kPressureFloor * s[3]) || !std::isfinite(p)) return false;
   }
   return true;
 }
@@ -731,7 +736,7 @@ SolveReport FlowSolver::solve() {
       for (int halving = 0;; ++halving) {
         for (int v = 0; v < 4; ++v) un[v] = u_[i][v] + omega_i * du[4 * i + v];
         const double p_new = (gas_.gamma - 1.0) * (un[3] - 0.5 * (un[1] * un[1] + un[2] * un[2]) / un[0]);
-        const bool ok = un[0] > 0.0 && p_new > 0.0 &&
+        const bool ok = un[0] > 0.0 && p_new > kPressureFloor * un[3] &&
                         std::abs(p_new - wo[3]) <= 2.0 * settings_.max_relative_update * wo[3];
         if (ok) break;
         if (halving == 12 || omega_i == 0.0) {
