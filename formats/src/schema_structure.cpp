@@ -32,6 +32,12 @@ Schema structure_schema() {
   s.datasets.push_back(f64("/joints/*/strain_energy", {"1"}, "J", "flexible joints (1.2)", false));
   s.datasets.push_back(f64("/joints/*/sliding", {"1"}, "m", "prismatic joints: relative displacement along the axis (1.2)", false));
   s.datasets.push_back(f64("/history/time", {"T"}, "s", "dynamic analysis", false));
+  s.datasets.push_back(f64("/restart/velocity", {"N", "3"}, "m/s", "dynamic: nodal velocity at the end (1.2)", false));
+  s.datasets.push_back(f64("/restart/angular_velocity", {"N", "3"}, "rad/s",
+                           "dynamic: nodal angular velocity at the end, material frame (1.2)", false));
+  s.datasets.push_back(f64("/restart/joint_dofs", {"J"}, "rad", "dynamic: joint unknowns at the end (1.2)", false));
+  s.datasets.push_back(f64("/restart/joint_rates", {"J"}, "rad/s", "dynamic: their rates (1.2)", false));
+  s.attributes.push_back(nattr("/restart", "time", "s", "dynamic: time reached by the run (1.2)", 0.0, std::nullopt, false));
   s.datasets.push_back(f64("/history/displacement", {"T", "N", "3"}, "m", "", false));
   s.datasets.push_back(f64("/modes/frequency", {"M"}, "Hz", "modal analysis: natural frequencies", false));
   s.datasets.push_back(f64("/modes/displacement", {"M", "N", "3"}, "1",

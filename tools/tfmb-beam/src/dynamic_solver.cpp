@@ -97,6 +97,7 @@ DynamicResult DynamicSolver::run(const State& initial) {
     vel.segment<3>(6 * i) = init_v_[i];
     vel.segment<3>(6 * i + 3) = init_w_[i];
   }
+  if (init_joint_rates_.size() == nj) vel.tail(nj) = init_joint_rates_;
   NewtonLinearSolver solver([&](int i) { return assembly_.dof_name(i); });
 
   // Inertia forces (spatial, spin-conjugate for rotations) and their iteration matrix.

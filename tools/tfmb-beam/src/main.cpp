@@ -25,6 +25,10 @@ int main(int argc, char** argv) {
   app.add_option("--load-steps", options.load_steps, "static: initial load steps (default: the model's)")->check(CLI::NonNegativeNumber);
   app.add_option("--end-time", options.end_time, "dynamic: end time [s] (default: the model's)")->check(CLI::NonNegativeNumber);
   app.add_option("--time-step", options.time_step, "dynamic: time step [s] (default: the model's)")->check(CLI::NonNegativeNumber);
+  app.add_option("--initial-state", options.initial_state,
+                 "dynamic: continue from the final positions, rotations and velocities of an earlier dynamic "
+                 "structure.h5 of the same model (its /restart group)")
+      ->check(CLI::ExistingFile);
   app.add_option("--rho-inf", options.rho_infinity, "dynamic: spectral radius at infinity of generalized-alpha [0, 1]")
       ->capture_default_str()->check(CLI::Range(0.0, 1.0));
   app.add_option("--modes", options.modes, "modal: number of modes")->capture_default_str()->check(CLI::PositiveNumber);

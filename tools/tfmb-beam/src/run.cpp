@@ -326,7 +326,8 @@ void write_structure_xdmf(const std::filesystem::path& h5file, std::size_t n_poi
 
 void write_structure(const Options& options, const FileModel& fm, const Assembly& asmb, const State& state,
                      const std::string& analysis, bool converged, const std::vector<double>& times,
-                     const std::vector<std::vector<Eigen::Vector3d>>& history, const ModalResult* modes) {
+                     const std::vector<std::vector<Eigen::Vector3d>>& history, const ModalResult* modes,
+                     const Motion* motion = nullptr, double end_time = 0.0) {
   const Model& m = fm.model;
   h5::Writer w(options.output);
   formats::Header header;
@@ -422,6 +423,25 @@ void write_structure(const Options& options, const FileModel& fm, const Assembly
     w.write_array("/modes/displacement", shapes, {static_cast<size_t>(f.size()), static_cast<size_t>(n), 3}, "1",
                   "nodal translations of each mode, divided by the largest entry of the mode vector");
   }
+  if (motion) {
+    // What a later dynamic run needs to continue this one (--initial-state): the positions and
+    // rotations are /fields/point/*, the rates and joint unknowns are here.
+    h5::MatrixXdR v(n, 3), omega(n, 3);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      v.row(i) = motion->velocity[i].transpose();
+      omega.row(i) = motion->angular_velocity[i].transpose();
+    }
+    w.write("/restart/velocity", v, "m/s", "nodal velocity at the end of the run");
+    w.write("/restart/angular_velocity", omega, "rad/s", "nodal angular velocity, material frame");
+    if (state.joint_dofs.size() > 0) {
+      w.write("/restart/joint_dofs", std::vector<double>(state.joint_dofs.data(), state.joint_dofs.data() + state.joint_dofs.size()),
+              "rad", "joint unknowns (e.g. revolute relative angles)");
+      w.write("/restart/joint_rates",
+              std::vector<double>(motion->joint_rates.data(), motion->joint_rates.data() + motion->joint_rates.size()),
+              "rad/s", "rates of the joint unknowns");
+    }
+    w.set_attr("/restart", "time", end_time);
+  }
   formats::Provenance prov;
   prov.command_line = options.command_line;
   std::ostringstream settings;
@@ -434,6 +454,44 @@ void write_structure(const Options& options, const FileModel& fm, const Assembly
   formats::write_provenance(w, prov);
   w.commit();
   write_structure_xdmf(options.output, static_cast<std::size_t>(n), static_cast<std::size_t>(ns));
+}
+
+}  // namespace
+
+namespace {
+
+/// Start state and motion from an earlier dynamic structure.h5 of the same model (--initial-state).
+void continue_from(const std::filesystem::path& file, const FileModel& fm, const Assembly& asmb, State& state,
+                   DynamicSolver& solver) {
+  const h5::Reader r = formats::open_checked(file, "structure");
+  const Model& m = fm.model;
+  const Eigen::Index n = static_cast<Eigen::Index>(m.nodes.size());
+  if (!r.exists("/restart/velocity")) r.fail("/restart", "missing: the file is not from a dynamic run");
+  const h5::MatrixXdR points = r.read_matrix("/beam/points", n, 3);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if ((points.row(i).transpose() - m.nodes[i].position).norm() > 1e-9 * (1.0 + m.nodes[i].position.norm())) {
+      r.fail("/beam/points", "node " + std::to_string(i) + " is not where the model puts it: another model");
+    }
+  }
+  const h5::MatrixXdR disp = r.read_matrix("/fields/point/displacement", n, 3);
+  const h5::MatrixXdR rot = r.read_matrix("/fields/point/rotation", n, 3);
+  const h5::MatrixXdR v = r.read_matrix("/restart/velocity", n, 3);
+  const h5::MatrixXdR omega = r.read_matrix("/restart/angular_velocity", n, 3);
+  std::vector<Eigen::Vector3d> velocity(n), angular_velocity(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    state.position[i] = m.nodes[i].position + disp.row(i).transpose();
+    state.rotation[i] = rot.row(i).transpose();
+    velocity[i] = v.row(i).transpose();
+    angular_velocity[i] = omega.row(i).transpose();
+  }
+  solver.set_initial_velocity(velocity, angular_velocity);
+  const auto nj = static_cast<std::size_t>(asmb.num_joint_dofs());
+  if (nj > 0) {
+    const auto dofs = r.read_vector("/restart/joint_dofs", nj);
+    const auto rates = r.read_vector("/restart/joint_rates", nj);
+    state.joint_dofs = Eigen::Map<const Eigen::VectorXd>(dofs.data(), static_cast<Eigen::Index>(nj));
+    solver.set_initial_joint_rates(Eigen::Map<const Eigen::VectorXd>(rates.data(), static_cast<Eigen::Index>(nj)));
+  }
 }
 
 }  // namespace
@@ -486,8 +544,11 @@ int run(const Options& options, const Logger& log) {
         history.push_back(s.position);
       };
       DynamicSolver solver(*asmb, dopt);
-      const DynamicResult r = solver.run(asmb->initial_state());
-      write_structure(options, fm, *asmb, r.state, analysis, r.completed, times, history, nullptr);
+      State initial = asmb->initial_state();
+      if (!options.initial_state.empty()) continue_from(options.initial_state, fm, *asmb, initial, solver);
+      const DynamicResult r = solver.run(initial);
+      write_structure(options, fm, *asmb, r.state, analysis, r.completed, times, history, nullptr, &solver.motion(),
+                      r.time);
       log.summary("dynamic: " + std::to_string(r.steps) + " steps to t = " + std::to_string(r.time) + " s" +
                   (r.completed ? "" : " (NOT completed)"));
       if (!r.completed) throw NotConverged("Newton failed at t = " + std::to_string(r.time) + " s");

@@ -55,6 +55,9 @@ class DynamicSolver {
   DynamicResult run(const State& initial);
   void set_initial_velocity(const std::vector<Eigen::Vector3d>& velocity,
                             const std::vector<Eigen::Vector3d>& angular_velocity_material);
+  /// Initial rates of the joint unknowns (e.g. revolute relative angles) [rad/s], with
+  /// set_initial_velocity to continue an earlier run.
+  void set_initial_joint_rates(const Eigen::VectorXd& rates) { init_joint_rates_ = rates; }
   const Motion& motion() const { return motion_; }
   /// Kinetic energy of `motion()` [J].
   double kinetic_energy() const;
@@ -67,6 +70,7 @@ class DynamicSolver {
   MassModel mass_;
   Motion motion_;
   std::vector<Eigen::Vector3d> init_v_, init_w_;
+  Eigen::VectorXd init_joint_rates_;
 };
 
 }  // namespace tfmb::beam

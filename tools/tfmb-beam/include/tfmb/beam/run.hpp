@@ -20,6 +20,9 @@ struct Options {
   int load_steps = 0;               // static: 0 -> the model's /analysis @load_steps
   double end_time = 0.0;            // dynamic [s]; 0 -> the model's
   double time_step = 0.0;           // dynamic [s]; 0 -> the model's
+  /// dynamic: continue from the final state and motion (/restart) of an earlier dynamic
+  /// structure.h5 of the same model (two-way exchanges of dynamics, the seed's config2)
+  std::filesystem::path initial_state;
   double rho_infinity = 0.8;        // dynamic: spectral radius at infinity
   int modes = 6;                    // modal: number of modes
   bool arc_length = false;          // static: arc-length continuation to load factor 1 (limit points)
