@@ -157,3 +157,34 @@ TEST(FlowRun, BadInputs) {
   EXPECT_THROW(run(other, log), BadInput);
   std::filesystem::remove_all(dir);
 }
+
+// The stationarity criterion (--stationary-tolerance): stops once every wall pressure and the
+// wall pressure force stop moving, before the residual has dropped 8 orders, with wall
+// pressures equal to the fully converged ones to about the tolerance.
+TEST(FlowRun, WallPressureStationarityCriterion) {
+  const auto dir = temp_dir();
+  write_flowmesh(dir / "flowmesh.h5", nparc::make_mesh(61, 16));
+  std::ostringstream log_text;
+  const Logger log("tfmb-flow", Verbosity::normal, log_text);
+  RunOptions full = nozzle_options(dir);
+  const RunResult r_full = run(full, log);
+  ASSERT_TRUE(r_full.report.converged);
+  RunOptions early = nozzle_options(dir);
+  early.output = dir / "flow-stationary.h5";
+  early.settings.stationary_tolerance = 1e-6;
+  const RunResult r_early = run(early, log);
+  ASSERT_TRUE(r_early.report.converged);
+  EXPECT_TRUE(r_early.report.converged_by_stationarity);
+  EXPECT_LT(r_early.report.iterations, r_full.report.iterations);
+  const h5::Reader a = formats::open_checked(full.output, "flow");
+  const h5::Reader b = formats::open_checked(early.output, "flow");
+  const auto pa = a.read_vector("/walls/wall/pressure");
+  const auto pb = b.read_vector("/walls/wall/pressure");
+  double worst = 0.0;
+  for (std::size_t k = 0; k < pa.size(); ++k) worst = std::max(worst, std::abs(pa[k] - pb[k]) / nparc::kP0);
+  std::printf("stationarity: %d iterations against %d; largest wall-pressure difference %.2e p0\n",
+              r_early.report.iterations, r_full.report.iterations, worst);
+  EXPECT_LT(worst, 1e-5);
+  EXPECT_NE(b.attr_string("/convergence", "criterion").find("met: stationarity"), std::string::npos);
+  std::filesystem::remove_all(dir);
+}

@@ -66,6 +66,13 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("--exact-jacobian", o.settings.exact_jacobian,
                "first-order Roe Jacobian by finite differences (dissipation included) instead of frozen dissipation");
+  app.add_option("--stationary-tolerance", o.settings.stationary_tolerance,
+                 "[-] also converged when every wall pressure (relative to p0) and the wall pressure force "
+                 "change by less than this per iteration, --stationary-iterations times in a row (0: off)")
+      ->capture_default_str();
+  app.add_option("--stationary-iterations", o.settings.stationary_iterations,
+                 "consecutive iterations the stationarity criterion must hold")
+      ->capture_default_str();
   app.add_option("--linear-tolerance", o.settings.linear_tolerance,
                  "[-] relative GMRES tolerance per nonlinear iteration")
       ->capture_default_str();

@@ -356,9 +356,15 @@ RunResult run(const RunOptions& o, const Logger& log) {
     w.set_attr("/conditions", "gas_constant", o.gas_constant);
     w.create_group("/convergence");
     w.set_attr("/convergence", "converged", static_cast<std::int64_t>(rep.converged ? 1 : 0));
-    w.set_attr("/convergence", "criterion",
-               "density residual (RMS of residual/volume) below " + num(settings.residual_drop) +
-                   " of its largest value");
+    std::string criterion = "density residual (RMS of residual/volume) below " + num(settings.residual_drop) +
+                            " of its largest value";
+    if (settings.stationary_tolerance > 0.0) {
+      criterion += ", or wall pressure (relative to " + num(settings.reference_state[3]) +
+                   " Pa) and wall pressure force changing by less than " + num(settings.stationary_tolerance) +
+                   " per iteration for " + std::to_string(settings.stationary_iterations) + " iterations" +
+                   (rep.converged ? (rep.converged_by_stationarity ? " (met: stationarity)" : " (met: residual)") : "");
+    }
+    w.set_attr("/convergence", "criterion", criterion);
     w.set_attr("/convergence", "iterations", static_cast<std::int64_t>(rep.iterations));
     w.set_attr("/convergence", "residual_reference", rep.residual_reference);
     std::vector<double> history;

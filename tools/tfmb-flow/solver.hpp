@@ -53,6 +53,11 @@ struct SolverSettings {
   double inflow_ramp_start_pressure = 0.0;  // [Pa]
   int max_iterations = 500;
   double residual_drop = 1e-8;    // converged when the density residual fell by this factor
+  // When > 0, also converged when the pressure at every wall node and the pressure force on the
+  // walls change by less than this (relative to the reference pressure and to the force) per
+  // iteration, stationary_iterations times in a row: what a coupled run needs from the flow.
+  double stationary_tolerance = 0.0;
+  int stationary_iterations = 10;
   // Reference density residual for the drop (0: the largest residual of this run). A restart
   // passes the reference of the run it continues, so a converged state stays converged.
   double residual_reference = 0.0;
@@ -96,6 +101,9 @@ struct IterationRecord {
 
 struct SolveReport {
   bool converged = false;
+  bool converged_by_stationarity = false;  // (rather than by the residual drop)
+  double wall_pressure_change = 0.0;  // last iteration's largest relative wall-pressure change
+  double wall_force_change = 0.0;     // last iteration's relative change of the wall pressure force
   int iterations = 0;
   long linear_iterations = 0;
   int backoffs = 0;            // CFL back-offs after non-physical states
