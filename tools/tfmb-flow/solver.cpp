@@ -47,6 +47,13 @@ class ScopedThreads {
 // Smallest pressure accepted, relative to the total energy per volume rho E (see physical()).
 constexpr double kPressureFloor = 1e-10;
 
+// Finite-difference step of conservative variable c of u0 for the Jacobians: relative to the
+// variable, with the momentum scale rho c for the momenta (which may be zero).
+inline double fd_step(const State& u0, int c) {
+  const double scale = (c == 1 || c == 2) ? std::sqrt(u0[0] * u0[3]) : 0.0;
+  return 1e-7 * (std::abs(u0[c]) + scale);
+}
+
 inline void add_block(double* target, const Block& b, double s) {
   for (int k = 0; k < 16; ++k) target[k] += s * b[k];
 }
@@ -490,8 +497,7 @@ void FlowSolver::assemble_jacobian(const std::vector<double>& diag_scale) {
         Block& d = side == 0 ? jac.d_left : jac.d_right;
         for (int c = 0; c < 4; ++c) {
           State up = u0;
-          const double scale = (c == 1 || c == 2) ? std::sqrt(u0[0] * u0[3]) : 0.0;
-          const double h = 1e-7 * (std::abs(u0[c]) + scale);
+          const double h = fd_step(u0, c);
           up[c] += h;
           const State wp = gas_.primitive(up);
           const State f1 = side == 0 ? roe_flux(gas_, wp, w_[j], n_e.x, n_e.y, settings_.entropy_fix)
@@ -545,8 +551,7 @@ void FlowSolver::assemble_jacobian(const std::vector<double>& diag_scale) {
     const State f0 = boundary_flux(gas_, bc, w_[face.node], face.normal, face.node, settings_.entropy_fix);
     for (int c = 0; c < 4; ++c) {
       State up = u0;
-      const double scale = (c == 1 || c == 2) ? std::sqrt(u0[0] * u0[3]) : 0.0;  // momentum scale rho*c
-      const double h = 1e-7 * (std::abs(u0[c]) + scale);
+      const double h = fd_step(u0, c);
       up[c] += h;
       const State f1 = boundary_flux(gas_, bc, gas_.primitive(up), face.normal, face.node, settings_.entropy_fix);
       for (int r = 0; r < 4; ++r) d[4 * r + c] += (f1[r] - f0[r]) / h;

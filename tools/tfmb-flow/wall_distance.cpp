@@ -4,20 +4,9 @@
 #include <cmath>
 #include <limits>
 
+#include "tfmb/common/geometry.hpp"
+
 namespace tfmb::flow {
-
-namespace {
-
-double segment_distance(Vec2 p, Vec2 a, Vec2 b) {
-  const Vec2 ab = b - a;
-  const double len2 = dot(ab, ab);
-  double t = len2 > 0.0 ? dot(p - a, ab) / len2 : 0.0;
-  t = std::clamp(t, 0.0, 1.0);
-  const Vec2 q{a.x + t * ab.x, a.y + t * ab.y};
-  return norm(p - q);
-}
-
-}  // namespace
 
 std::vector<double> wall_distance(const std::vector<Vec2>& points, const std::vector<std::array<Vec2, 2>>& walls) {
   const int n = static_cast<int>(points.size());
@@ -42,7 +31,9 @@ std::vector<double> wall_distance(const std::vector<Vec2>& points, const std::ve
       const double dx = std::max({b.x0 - p.x, 0.0, p.x - b.x1});
       const double dy = std::max({b.y0 - p.y, 0.0, p.y - b.y1});
       if (dx * dx + dy * dy >= best * best) continue;
-      best = std::min(best, segment_distance(p, walls[k][0], walls[k][1]));
+      const auto& [start, end] = walls[k];
+      best = std::min(best, geometry::distance_to_segment(geometry::Point(p.x, p.y), geometry::Point(start.x, start.y),
+                                                          geometry::Point(end.x, end.y)));
     }
     d[i] = best;
   }

@@ -91,6 +91,23 @@ inline void push_node_dofs(int node, JointEval& out) {
   for (int i = 0; i < 6; ++i) out.dofs.push_back(6 * node + i);
 }
 
+/// The two handles of a two-node joint as Hyper<N> variables (handle a the ground at
+/// `ground_point` when spec.node_a < 0), their node dofs pushed to `out` in variable order.
+template <int N>
+void handle_vars(const JointContext& ctx, const JointSpec& spec, const Eigen::Vector3d& ground_point,
+                 NodeVars<N>& a, NodeVars<N>& b, JointEval& out) {
+  if (spec.node_a < 0) {
+    a = ground_vars<N>(ground_point);
+    b = node_vars<N>(ctx.model, ctx.state, spec.node_b, 0);
+    push_node_dofs(spec.node_b, out);
+  } else {
+    a = node_vars<N>(ctx.model, ctx.state, spec.node_a, 0);
+    b = node_vars<N>(ctx.model, ctx.state, spec.node_b, 6);
+    push_node_dofs(spec.node_a, out);
+    push_node_dofs(spec.node_b, out);
+  }
+}
+
 /// An orthonormal frame whose third column is `axis`.
 inline Eigen::Matrix3d frame_from_axis(const Eigen::Vector3d& axis) {
   const Eigen::Vector3d e3 = axis.normalized();

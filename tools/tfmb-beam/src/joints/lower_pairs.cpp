@@ -80,16 +80,7 @@ class LowerPair final : public Joint {
     using H = Hyper<13>;
     out = JointEval{};
     NodeVars<13> a, b;
-    if (spec_.node_a < 0) {
-      a = ground_vars<13>(ground_point_);
-      b = node_vars<13>(ctx.model, ctx.state, spec_.node_b, 0);
-      push_node_dofs(spec_.node_b, out);
-    } else {
-      a = node_vars<13>(ctx.model, ctx.state, spec_.node_a, 0);
-      b = node_vars<13>(ctx.model, ctx.state, spec_.node_b, 6);
-      push_node_dofs(spec_.node_a, out);
-      push_node_dofs(spec_.node_b, out);
-    }
+    handle_vars<13>(ctx, spec_, ground_point_, a, b, out);
     H phi_var(0.0);
     if (spec_.kind == JointKind::screw) {
       const int iphi = static_cast<int>(out.dofs.size());

@@ -40,18 +40,8 @@ class Revolute final : public Joint {
   void evaluate(const JointContext& ctx, const Eigen::VectorXd& lambda, JointEval& out) const override {
     using H = Hyper<13>;
     out = JointEval{};
-    const bool ground = spec_.node_a < 0;
     NodeVars<13> a, b;
-    if (ground) {
-      a = ground_vars<13>(ground_point_);
-      b = node_vars<13>(ctx.model, ctx.state, spec_.node_b, 0);
-      push_node_dofs(spec_.node_b, out);
-    } else {
-      a = node_vars<13>(ctx.model, ctx.state, spec_.node_a, 0);
-      b = node_vars<13>(ctx.model, ctx.state, spec_.node_b, 6);
-      push_node_dofs(spec_.node_a, out);
-      push_node_dofs(spec_.node_b, out);
-    }
+    handle_vars<13>(ctx, spec_, ground_point_, a, b, out);
     const int iphi = static_cast<int>(out.dofs.size());
     out.dofs.push_back(first_internal_dof_);
     const int nv = iphi + 1;
