@@ -27,6 +27,7 @@ State boundary_flux(const PerfectGas& gas, const BoundaryCondition& bc, const St
       return euler_flux(gas, stagnation_inflow_state(gas, bc, w, unit), n.x, n.y);
     case BcKind::farfield: {
       const State& inf = bc.node_freestream.empty() ? bc.freestream : bc.node_freestream[node];
+      if (!bc.riemann_invariants) return roe_flux(gas, w, inf, n.x, n.y, entropy_fix);
       return roe_flux(gas, w, farfield_state(gas, inf, w, unit), n.x, n.y, entropy_fix);
     }
     case BcKind::pressure_outflow:

@@ -13,7 +13,7 @@ namespace tfmb::flow {
 
 enum class BcKind {
   stagnation_inflow,  // total pressure, total temperature and flow angle given
-  farfield,           // characteristic far field from a free-stream state (Riemann invariants)
+  farfield,           // far field from a free-stream state (Roe flux against it, or Riemann invariants)
   pressure_outflow,   // static pressure if the face-normal Mach number < 1, else extrapolation
   slip_wall,          // inviscid wall
   symmetry,           // symmetry plane or axis (inviscid flux as slip wall, no shear)
@@ -32,6 +32,14 @@ struct BoundaryCondition {
   // farfield: optional free-stream state per mesh node (e.g. an exact solution); overrides
   // freestream when not empty (size = number of nodes).
   std::vector<State> node_freestream;
+  // farfield: flux through the face. Default: the Roe flux between the node state and the free
+  // stream (FUN3D's "farfield_roe"), a differentiable function of the node state, since each wave
+  // is upwinded by its Roe-averaged speed. The alternative builds the boundary state from the
+  // locally one-dimensional Riemann invariants (Blazek 2015, sec. 8.2), whose switches at V.n = 0
+  // (entropy and tangential velocity from outside or inside) and at V.n = c make the residual
+  // jump: on a jet into air at rest the implicit iteration then locks into a limit cycle
+  // (nasa-2dcd: period 2-4 at 1e-2..1e-3 of the peak residual) instead of converging.
+  bool riemann_invariants = false;
   double static_pressure = 0.0;    // pressure_outflow [Pa]
   double wall_temperature = 0.0;   // wall_isothermal [K]
   // wall_isothermal: per node of the solver's numbering [K]; overrides wall_temperature when set
@@ -47,8 +55,9 @@ struct BoundaryCondition {
 
 // Flux out of the domain through a boundary face with outward normal n (length = face measure),
 // given the primitive state w at the face's node. Far field and outflow solve the Roe Riemann
-// problem between w and the characteristic boundary state (entropy_fix as in roe_flux), which
-// lets a start-up shock leave through a supersonic exit instead of sticking to the exit nodes.
+// problem between w and the free stream or the characteristic boundary state (entropy_fix as in
+// roe_flux), which lets a start-up shock leave through a supersonic exit instead of sticking to
+// the exit nodes.
 State boundary_flux(const PerfectGas& gas, const BoundaryCondition& bc, const State& w, Vec2 n,
                     int node, double entropy_fix);
 

@@ -64,6 +64,10 @@ int main(int argc, char** argv) {
   app.add_option("--cfl-stall-iterations", o.settings.cfl_stall_iterations,
                  "halve the CFL ceiling after this many iterations without a new residual minimum (0: never)")
       ->capture_default_str();
+  app.add_option("--farfield-flux", o.farfield_flux,
+                 "far-field faces: roe (Roe flux against the free stream, differentiable: converges on "
+                 "jets into air at rest) or riemann (boundary state from the 1D Riemann invariants)")
+      ->check(CLI::IsMember({"roe", "riemann"}))->capture_default_str();
   app.add_flag("--exact-jacobian", o.settings.exact_jacobian,
                "first-order Roe Jacobian by finite differences (dissipation included) instead of frozen dissipation");
   app.add_option("--stationary-tolerance", o.settings.stationary_tolerance,

@@ -102,6 +102,8 @@ RunResult run(const RunOptions& o, const Logger& log) {
   require(o.ambient_pressure > 0.0, "--ambient-pressure must be positive");
   require(o.model == "euler" || o.model == "laminar" || o.model == "sa" || o.model == "sa-noft2",
           "--model must be euler, laminar, sa or sa-noft2, got '" + o.model + "'");
+  require(o.farfield_flux == "roe" || o.farfield_flux == "riemann",
+          "--farfield-flux must be roe or riemann, got '" + o.farfield_flux + "'");
   LoadedMesh lm = load_mesh(o.mesh_file);
   const bool turbulent = o.model == "sa" || o.model == "sa-noft2";
   const bool viscous = o.model == "laminar" || turbulent;
@@ -133,6 +135,7 @@ RunResult run(const RunOptions& o, const Logger& log) {
     } else if (kind == "farfield") {
       bc.kind = BcKind::farfield;
       bc.freestream = w_inf;
+      bc.riemann_invariants = o.farfield_flux == "riemann";
       has_farfield = true;
     } else if (kind == "outflow") {
       bc.kind = BcKind::pressure_outflow;
@@ -381,6 +384,7 @@ RunResult run(const RunOptions& o, const Logger& log) {
     s << "model = \"" << o.model << "\"\norder = " << settings.order << "\ncfl_start = " << settings.cfl_start
       << "\ncfl_max = " << settings.cfl_max << "\nmax_iterations = " << settings.max_iterations
       << "\nresidual_drop = " << settings.residual_drop << "\nentropy_fix = " << settings.entropy_fix
+      << "\nfarfield_flux = \"" << o.farfield_flux << "\""
       << "\nlimiter = " << (settings.limiter ? "true" : "false") << "\nvenkat_wang = " << settings.venkat_wang
       << "\nthreads = " << settings.threads << "\n";
     prov.settings = s.str();

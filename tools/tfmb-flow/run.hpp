@@ -27,6 +27,7 @@ struct RunOptions {
   std::optional<double> wall_temperature;  // [K] isothermal no-slip walls (laminar); adiabatic if unset
   std::optional<double> throat_area;    // [m] per unit depth (planar) or [m^2] (axisymmetric), for Cd
   double heat_transfer_dt = 20.0;       // [K] probe below T_aw for the heat transfer coefficient (0: none)
+  std::string farfield_flux = "roe";    // roe | riemann (BoundaryCondition::riemann_invariants)
   int inflow_ramp = -1;                 // iterations of the total-pressure ramp (-1: automatic)
   bool renumber = true;                 // reverse Cuthill-McKee node order inside the solver
   SolverSettings settings;
