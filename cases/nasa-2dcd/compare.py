@@ -5,8 +5,8 @@ Prints, from a tfmb/flow file of the nasa-2dcd case (nozzle B1, throat at x = 0)
 - the upper-flap wall p/p0 at the experiment's stations x/l_e (l_e = 5.752 cm, README.md) against
   the measured centreline values (refdata/flow/mason_tp1704_B1_upper_flap_p_npr8p91.csv), when the
   run's nozzle pressure ratio is that of the data (8.91) or --reference is given;
-- on the upper divergent inner wall: shock foot (start of the steepest pressure rise, if the rise is
-  more than 10 % of the pressure before it), separation and reattachment (sign changes of the
+- on the upper divergent inner wall: shock foot (the lowest wall pressure, if the pressure rises
+  by more than 10 % downstream of it before the exit), separation and reattachment (sign changes of the
   streamwise wall shear; viscous runs only), as x/l_e;
 - discharge coefficient (flow.h5 /integrals) and thrust ratio F/F_i, with F_i the ideal isentropic
   thrust of the computed mass flow fully expanded to the ambient pressure (TP-1704's thrust ratio).
@@ -84,14 +84,14 @@ def shock_and_separation(x, p_ratio, shear_x, viscous):
               "reattachment_x_over_le": None}
     if len(x) < 3:
         return result
-    dp = np.diff(p_ratio) / np.diff(x)
-    k = int(np.argmax(dp))
-    if dp[k] > 0.0:
-        foot = k
-        while foot > 0 and dp[foot - 1] > 0.0:
-            foot -= 1
-        rise = p_ratio[k + 1:].max() - p_ratio[foot]
-        if rise > 0.1 * p_ratio[foot]:
+    # The shock that an over-expanded nozzle holds in its divergent part: the pressure rises from
+    # its lowest value on the wall (the foot) by more than 10 % before the exit. (The recompression
+    # just downstream of B1's sharp throat, about 15 % at every NPR, lies upstream of that minimum.)
+    interior = slice(0, len(x) - 1)  # the lip node sees the base flow: not part of the wall's rise
+    foot = int(np.argmin(p_ratio[interior]))
+    if foot + 1 < len(x) - 1:
+        rise = p_ratio[foot + 1:len(x) - 1].max() / p_ratio[foot] - 1.0
+        if rise > 0.1:
             result["shock_foot_x_over_le"] = float(x[foot] / L_E)
             result["pre_shock_p_over_p0"] = float(p_ratio[foot])
     if viscous:
@@ -103,7 +103,8 @@ def shock_and_separation(x, p_ratio, shear_x, viscous):
                 result["separation_x_over_le"] = float((x0 - t0 * (x1 - x0) / (t1 - t0)) / L_E)
             else:
                 result["separation_x_over_le"] = float(x[0] / L_E)
-            after = np.nonzero(~negative[first:])[0]
+            # reattached only if the shear turns positive again before the last wall node
+            after = np.nonzero(~negative[first:-1])[0]
             if after.size:
                 result["reattachment_x_over_le"] = float(x[first + after[0]] / L_E)
     return result
@@ -158,7 +159,8 @@ def main():
           f"Cd {cd:.4f}, F/F_i {thrust_ratio:.4f}")
     for key in ("shock_foot_x_over_le", "pre_shock_p_over_p0", "separation_x_over_le", "reattachment_x_over_le"):
         value = figures[key]
-        print(f"  {key:24s} {'-' if value is None else f'{value:.3f}'}")
+        none = "- (separated to the exit)" if key == "reattachment_x_over_le" and figures["separation_x_over_le"] else "-"
+        print(f"  {key:24s} {none if value is None else f'{value:.3f}'}")
     if reference:
         stations, measured = read_reference(reference)
         computed = np.interp(stations * L_E, w["x"], p_ratio)

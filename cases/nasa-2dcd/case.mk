@@ -1,0 +1,8 @@
+# nasa-2dcd: flow validation against NASA TP-1704 (README.md). Spalart-Allmaras with first-order
+# convection (second order does not yet converge on nozzle-plume meshes with y+ 1 wall layers:
+# tools/tfmb-flow/README.md), converged when the wall pressures and the wall force are stationary
+# to 1e-6 (relative to p0) per iteration, or the density residual fell 8 orders. No heat-transfer
+# probe: the validation compares wall pressures only.
+ANALYSIS = flow
+FLOW_MODEL = sa
+FLOW_OPTS = --threads 2 --order 1 --stationary-tolerance 1e-6 --heat-transfer-dt 0
