@@ -73,7 +73,9 @@ PlumeMesh plume_mesh(int n_duct, int n_plume, int n_in, double plate_top, double
   return pm;
 }
 
-void expect_plume_converges(const PlumeMesh& pm) {
+// Second stage (second_order): restarted from the first-order solution, second order with the
+// downstream face a far field too.
+void expect_plume_converges(const PlumeMesh& pm, bool second_order = false) {
   check_mesh(pm.mesh);
   const PerfectGas gas;
   const double p_amb = 101325.0, t_amb = 288.15, p0 = 5.4 * p_amb, t0 = 750.0;
@@ -98,6 +100,20 @@ void expect_plume_converges(const PlumeMesh& pm) {
   const SolveReport r = solver.solve();
   EXPECT_TRUE(r.converged) << "residual drop " << r.residual_drop << " after " << r.iterations << " iterations";
   EXPECT_LT(r.residual_drop, 1e-8);
+  if (second_order) {
+    SolverSettings s2 = s;
+    s2.order = 2;
+    FlowSolver second(pm.mesh, Geometry::planar, gas, {sym, far, far, far, in, wall}, s2);
+    second.set_primitive(solver.primitive());
+    const SolveReport r2 = second.solve();
+    EXPECT_TRUE(r2.converged) << "second order: residual drop " << r2.residual_drop << " after " << r2.iterations
+                              << " iterations";
+    const double g = gas.gamma;
+    const double sonic =
+        p0 / std::sqrt(gas.R * t0) * std::sqrt(g) * std::pow(2.0 / (g + 1.0), (g + 1.0) / (2.0 * (g - 1.0))) * 0.5;
+    EXPECT_NEAR(-second.boundary_integral(4).mass_flow / sonic, 1.0, 0.05);
+    return;
+  }
   // The duct chokes at its exit: the mass flow through the inflow is the sonic one,
   // rho* a* h = p0 / sqrt(R T0) sqrt(gamma) (2/(gamma+1))^((gamma+1)/(2(gamma-1))) h (h = 0.5 m),
   // within the first-order scheme's error on 10 cells across the duct.
@@ -111,6 +127,13 @@ void expect_plume_converges(const PlumeMesh& pm) {
 
 TEST(FlowPlume, SonicJetIntoAirAtRestConvergesAtFirstOrder) {
   expect_plume_converges(plume_mesh(12, 30, 10, 0.52, 1.08, 0.05));
+}
+
+// With the pressure outflow downstream (its switch at the face-normal Mach number 1) the second
+// order does not converge on this mesh (drop 1 after 115 iterations); with a far field there it
+// converges 8 orders in about 190 iterations.
+TEST(FlowPlume, SonicJetIntoAirAtRestConvergesAtSecondOrderWithFarFieldDownstream) {
+  expect_plume_converges(plume_mesh(12, 30, 10, 0.52, 1.08, 0.05), true);
 }
 
 TEST(FlowPlume, FinerSonicJetIntoAirAtRestConvergesAtFirstOrder) {
