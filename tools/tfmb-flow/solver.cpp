@@ -415,8 +415,11 @@ void FlowSolver::compute_residual(bool update_limiter) {
         // viscous spectral radius (Blazek 2015, eq. 6.22)
         const double mu = settings_.viscosity.viscosity(gas_.temperature(w_[i])) + eddy_viscosity_[i];
         const double sn = norm(dual_.edge_normal_planar[e]);
-        lambda += std::max(4.0 / 3.0, gas_.gamma / settings_.viscosity.prandtl) * mu / w_[i][0] * sn * sn /
-                  dual_.area[i];
+        // (planar face and area; axisymmetric: times the cell's r-weighted volume over its area,
+        // so that the term is, like the convective one, V / dt with V = integral of r dA)
+        const double viscous_lambda =
+            std::max(4.0 / 3.0, gas_.gamma / settings_.viscosity.prandtl) * mu / w_[i][0] * sn * sn / dual_.area[i];
+        lambda += axi ? viscous_lambda * dual_.volume[i] / dual_.area[i] : viscous_lambda;
       }
     }
     res_[i] = r;
