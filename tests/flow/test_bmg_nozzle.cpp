@@ -4,7 +4,9 @@
 // 1.55 in, 15 deg cone downstream, 30 deg cone upstream from a 1.5955 in tube (the fillet
 // between tube and cone is left sharp). Tolerance 3 % of p/pt (issue 4), x >= 0.125 in.
 //
-// DISABLED until the viscous axisymmetric terms exist: the inviscid solution (mesh converged:
+// DISABLED (the experiment disagrees downstream, see below and the viscous version at the end of
+// this file, which shows that an attached turbulent boundary layer does not explain it): the
+// inviscid solution (mesh converged:
 // 141 x 31 and 281 x 61 nodes agree to 0.1 %) matches the experiment within 1 % on
 // 0.375 <= x <= 0.875 in but is 7.6 % high at x = 0.25 in (transonic region) and up to 17 %
 // low at x = 2.5 in, where the measured pressure levels off as a growing boundary layer would
@@ -13,10 +15,12 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
+#include "exact_nozzle.hpp"
 #include "mesh_generate.hpp"
 #include "solver.hpp"
 
@@ -60,6 +64,30 @@ std::vector<std::array<double, 2>> read_reference() {
     break;
   }
   return data;
+}
+
+// Wall p/pt at the reference stations x >= x_from (linear between trace nodes), printed; returns
+// the largest relative error on x_from <= x <= x_to and where it is.
+struct Comparison {
+  double worst = 0.0;
+  double where = 0.0;  // [in]
+};
+Comparison compare_wall_pressure(const WallTrace& trace, double p0, const std::vector<std::array<double, 2>>& reference,
+                                 double x_from, double x_to) {
+  Comparison c;
+  for (const auto& [x_in, p_ref] : reference) {
+    if (x_in < x_from) continue;
+    const double x = x_in * kInch;
+    std::size_t k = 1;
+    while (k + 1 < trace.x.size() && trace.x[k] < x) ++k;
+    const double f = (x - trace.x[k - 1]) / (trace.x[k] - trace.x[k - 1]);
+    const double p_wall = ((1.0 - f) * trace.pressure[k - 1] + f * trace.pressure[k]) / p0;
+    const double err = std::abs(p_wall - p_ref) / p_ref;
+    if (x_in <= x_to + 1e-9 && err > c.worst) c = {err, x_in};
+    std::printf("  x %.3f in  p/pt %.4f  experiment %.3f  (%+.1f %%)\n", x_in, p_wall, p_ref,
+                100.0 * (p_wall - p_ref) / p_ref);
+  }
+  return c;
 }
 
 }  // namespace
@@ -117,4 +145,178 @@ TEST(BackMassierGier, DISABLED_AxisymmetricWallPressure) {
   }
   std::printf("  worst |error| for x >= 0.125 in: %.2f %%\n", 100.0 * worst);
   EXPECT_LT(worst, 0.03);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Viscous version (issue 5): Spalart-Allmaras RANS, no-slip adiabatic wall, same geometry.
+// Conditions: p_t 500 kPa, T_t 300 K, air (gamma 1.4, R 287.05, Sutherland), those of the gdtk
+// example that the data file was transcribed from; BMG's runs were at a p_t of that order (the
+// data file does not say which run), and the Reynolds number (~8e7 per m at the throat) puts the
+// wall layer well into the turbulent range either way. The wall boundary layer starts at the
+// inflow face, 2.5 in upstream of the throat (the experiment's upstream tube is not modelled).
+// Outflow: static pressure of the isentropic flow at the exit area ratio (the core is
+// supersonic and extrapolated; only the subsonic part of the exit boundary layer sees it).
+// Mesh: ni x nj nodes, uniform in x, radial nodes clustered to the wall by a one-sided tanh
+// with the first spacing dy1 at every column (5e-7 m is y+ ~ 1 at the throat: u_tau ~ 12 m/s
+// for Cf ~ 0.0025, nu_w ~ 5.8e-6 m^2/s; measured 1.17).
+// Scheme: first order. Second order restarted from the converged first-order solution diverges
+// (141 x 81: omega -> 0 by iteration 50 at the wall node next to the sharp tube/cone corner,
+// x = -1.87 in), the known second-order problem at kinked walls with y+ 1 layers (README).
+//
+// Measured (141 x 81 = 11,421 nodes, first order, one thread): 121 iterations, 20 s, density
+// residual down 8 orders; wall p/pt within 3.2 % of the experiment on 0.125 <= x <= 2.0 in
+// except 5.6 % at 0.25 in, then -6.4, -10.9, -16.5, -17.1 % at x = 2.125 ... 2.5 in. The same
+// mesh and scheme inviscid (slip wall, BMG_INVISCID=1) gives -19.3 % at 2.5 in: the boundary
+// layer's displacement raises the wall pressure by 1-2.6 % only. The levelling-off of the
+// measured pressure from x ~ 2 in is not an attached-boundary-layer effect; BMG report
+// separated runs, so it is most likely the experiment's back pressure (not modelled: the exit
+// here is supersonic). p_t 482.6 kPa (70 psia) instead of 500 kPa: p/pt within 0.08 %.
+// On 281 x 81 (BMG_NI=281) p/pt rises by up to 1.9 %: within 1.4 % on
+// 0.375-1.0 in, +7.1 % at 0.25 in, -16.6 % at 2.5 in. Tolerance 3 % (issue 4) on 0.125 <= x <= 2.5 in: the test fails (17 %),
+// hence DISABLED; BMG_NI, BMG_NJ, BMG_ORDER, BMG_ITER, BMG_PRINT, BMG_INVISCID, BMG_P0 [Pa] change the run.
+namespace {
+
+struct ViscousRun {
+  SolveReport first_order;  // the first-order run (also the result when order = 1)
+  SolveReport report;
+  WallTrace trace;
+  int nodes = 0;
+  double y_plus_throat = 0.0;
+};
+
+ViscousRun run_viscous(int ni, int nj, double dy1, int order, int max_iterations, int print_every, bool viscous = true,
+                       double p0 = 5.0e5) {
+  StructuredMeshSpec spec;
+  spec.ni = ni;
+  spec.nj = nj;
+  const double deta = 1.0 / (nj - 1);
+  spec.map = [=](double xi, double eta) {
+    const double x = kInlet + (kExit - kInlet) * xi;
+    const double r_wall = wall_radius_in(x) * kInch;
+    // r(eta) = R tanh(beta eta) / tanh(beta); beta such that R - r(1 - deta) = dy1
+    auto first = [&](double beta) { return r_wall * (1.0 - std::tanh(beta * (1.0 - deta)) / std::tanh(beta)); };
+    double lo = 1e-3, hi = 30.0;
+    for (int it = 0; it < 200; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (first(mid) > dy1 ? lo : hi) = mid;
+    }
+    const double beta = 0.5 * (lo + hi);
+    return Vec2{x * kInch, r_wall * std::tanh(beta * eta) / std::tanh(beta)};
+  };
+  spec.bottom = "axis";
+  spec.right = "outlet";
+  spec.top = "wall";
+  spec.left = "inlet";
+  const Mesh mesh = structured_mesh(spec);
+  const PerfectGas gas{1.4, 287.05};
+  const double t0 = 300.0;
+  const double exit_ratio = std::pow(wall_radius_in(kExit) / kThroat, 2);
+  BoundaryCondition axis, out, wall, in;
+  axis.kind = BcKind::symmetry;
+  out.kind = BcKind::pressure_outflow;
+  out.static_pressure = p0 * isentropic_pressure_ratio(mach_of_area_ratio(exit_ratio, 1.4, true), 1.4);
+  wall.kind = viscous ? BcKind::wall_adiabatic : BcKind::slip_wall;
+  in.kind = BcKind::stagnation_inflow;
+  in.total_pressure = p0;
+  in.total_temperature = t0;
+  SolverSettings s;
+  const double rho0 = p0 / (gas.R * t0), c0 = std::sqrt(1.4 * gas.R * t0);
+  s.reference_state = {rho0, c0, c0, p0};
+  s.max_iterations = max_iterations;
+  s.order = order;
+  s.viscous = viscous;
+  s.turbulent = viscous;
+  s.print_every = print_every;
+  // first order from a uniform low-speed state; second order restarted from the converged
+  // first-order solution (the way tfmb-flow --restart runs it)
+  s.order = 1;
+  FlowSolver first(mesh, Geometry::axisymmetric, gas, {axis, out, wall, in}, s);
+  const double t = t0 / 1.008, p = p0 * std::pow(t / t0, 3.5);
+  first.set_uniform({p / (gas.R * t), 0.2 * std::sqrt(1.4 * gas.R * t), 0.0, p});
+  ViscousRun run;
+  run.nodes = mesh.num_points();
+  run.first_order = first.solve();
+  s.order = order;
+  FlowSolver solver(mesh, Geometry::axisymmetric, gas, {axis, out, wall, in}, s);
+  if (order == 1) {
+    run.report = run.first_order;
+    solver.set_primitive(first.primitive());
+    solver.set_nu_tilde(first.nu_tilde());
+  } else {
+    solver.set_primitive(first.primitive());
+    solver.set_nu_tilde(first.nu_tilde());
+    run.report = solver.solve();
+  }
+  run.trace = solver.wall_trace(2);
+  // y+ of the first node off the wall at the throat column
+  const auto w = solver.primitive();
+  const auto& tr = run.trace;
+  std::size_t k = 0;
+  while (k + 1 < tr.x.size() && tr.x[k] < 0.0) ++k;
+  const int node_wall = tr.node[k];
+  const int i = node_wall % ni;
+  const int node_first = (nj - 2) * ni + i;
+  const double mu_w = s.viscosity.viscosity(gas.temperature(w[node_wall]));
+  const double u_tau = std::sqrt(std::abs(tr.shear_stress[k]) / w[node_wall][0]);
+  const double dy = norm(solver.node_coords()[node_first] - solver.node_coords()[node_wall]);
+  run.y_plus_throat = w[node_wall][0] * u_tau * dy / mu_w;
+  return run;
+}
+
+int env_int(const char* name, int fallback) {
+  const char* v = std::getenv(name);
+  return v ? std::atoi(v) : fallback;
+}
+
+}  // namespace
+
+TEST(BackMassierGier, DISABLED_AxisymmetricViscousWallPressure) {
+  const auto reference = read_reference();
+  if (reference.empty()) GTEST_SKIP() << "refdata/flow/bmg_conical_nozzle_wall_p_gdtk.csv not found";
+  const int ni = env_int("BMG_NI", 141), nj = env_int("BMG_NJ", 81), order = env_int("BMG_ORDER", 1);
+  const double p0 = env_int("BMG_P0", 500000);  // [Pa]
+  const ViscousRun r = run_viscous(ni, nj, 5e-7, order, env_int("BMG_ITER", 600), env_int("BMG_PRINT", 0),
+                                   env_int("BMG_INVISCID", 0) == 0, p0);
+  std::printf("BMG nozzle, SA, order %d (%d x %d = %d nodes, y+ %.2f at the throat): %d iterations, %ld linear, "
+              "%.1f s, drop %.1e, converged %d\n",
+              order, ni, nj, r.nodes, r.y_plus_throat, r.report.iterations, r.report.linear_iterations,
+              r.report.wall_time, r.report.residual_drop, int(r.report.converged));
+  if (order > 1) {
+    std::printf("  (first order: %d iterations, %.1f s, drop %.1e, converged %d)\n", r.first_order.iterations,
+                r.first_order.wall_time, r.first_order.residual_drop, int(r.first_order.converged));
+  }
+  ASSERT_TRUE(r.report.converged);
+  const Comparison c = compare_wall_pressure(r.trace, p0, reference, 0.125, 2.5);
+  std::printf("  largest |error| for 0.125 <= x <= 2.5 in: %.2f %% at x = %.3f in\n", 100.0 * c.worst, c.where);
+  EXPECT_LT(c.worst, 0.03);
+}
+
+// Quick coarse version for the default suite (regression): 71 x 41 nodes, same wall spacing,
+// first order, 131 iterations, ~3 s. Checks that the run converges and that the wall p/pt at the 21 stations stays
+// within 0.5 % of the values this mesh gave when the test was written (a change of scheme,
+// boundary condition or SA term moves them by more); prints the experiment comparison.
+TEST(BackMassierGier, ViscousCoarseRegression) {
+  const auto reference = read_reference();
+  if (reference.empty()) GTEST_SKIP() << "refdata/flow/bmg_conical_nozzle_wall_p_gdtk.csv not found";
+  const ViscousRun r = run_viscous(71, 41, 5e-7, 1, 600, 0);
+  std::printf("BMG nozzle, SA, first order, 71 x 41 (y+ %.2f at the throat): %d iterations, %.1f s, drop %.1e\n",
+              r.y_plus_throat, r.report.iterations, r.report.wall_time, r.report.residual_drop);
+  ASSERT_TRUE(r.report.converged);
+  EXPECT_GT(r.y_plus_throat, 0.3);
+  EXPECT_LT(r.y_plus_throat, 3.0);
+  const Comparison c = compare_wall_pressure(r.trace, 5.0e5, reference, 0.125, 2.5);
+  std::printf("  largest |error| against the experiment for 0.125 <= x <= 2.5 in: %.2f %% at x = %.3f in\n",
+              100.0 * c.worst, c.where);
+  // recorded p/pt at x = 0.125, 0.25, ..., 2.5 in
+  const double recorded[20] = {
+      0.3504, 0.2706, 0.2079, 0.1775, 0.1622, 0.1479, 0.1346, 0.1225, 0.1114, 0.1015,
+      0.0924, 0.0843, 0.0770, 0.0705, 0.0646, 0.0593, 0.0545, 0.0503, 0.0464, 0.0429};
+  for (int k = 0; k < 20; ++k) {
+    const double x = 0.125 * (k + 1) * kInch;
+    std::size_t m = 1;
+    while (m + 1 < r.trace.x.size() && r.trace.x[m] < x) ++m;
+    const double f = (x - r.trace.x[m - 1]) / (r.trace.x[m] - r.trace.x[m - 1]);
+    const double p = ((1.0 - f) * r.trace.pressure[m - 1] + f * r.trace.pressure[m]) / 5.0e5;
+    EXPECT_NEAR(p / recorded[k], 1.0, 0.005) << "x " << 0.125 * (k + 1) << " in";
+  }
 }
