@@ -50,7 +50,7 @@ Schema flow_schema() {
                                "restart continues from it",
                                0.0, std::nullopt, false));
   s.datasets.push_back(f64("/convergence/residual_history", {"I", "*"}, "1",
-                           "per iteration: L2 residual of each equation relative to the first"));
+                           "per iteration: L2 residual of each equation relative to its largest value in the run"));
   add_provenance(s);
   return s;
 }
