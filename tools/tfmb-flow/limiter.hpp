@@ -10,8 +10,10 @@
 namespace tfmb::flow {
 
 // phi[node][k] in [0, 1] for each of the 4 reconstructed variables. epsilon2[node][k] is the
-// smoothing (K h)^3 scaled to the variable, see make_venkat_epsilon.
-void venkatakrishnan_limiter(const DualMesh& dual, const std::vector<State>& q,
+// smoothing (K h)^3 scaled to the variable, see make_venkat_epsilon. to_neighbour: the vectors
+// the reconstruction measures to each neighbour (StencilGeometry), half of which reaches the face.
+void venkatakrishnan_limiter(const DualMesh& dual, const std::vector<Vec2>& to_neighbour,
+                             const std::vector<State>& q,
                              const std::vector<std::array<double, 8>>& grad,
                              const std::vector<State>& epsilon2, std::vector<State>& phi);
 
@@ -24,6 +26,7 @@ std::vector<State> make_venkat_epsilon(const DualMesh& dual, double k_venkat, co
 // coefficient * (global max - global min) of each variable, the same for every node. Small
 // fluctuations of nearly uniform fields (pressure across a boundary layer) then stay unlimited
 // on any cell size, while jumps of the order of the range (shocks) are limited.
-std::vector<State> make_wang_epsilon(const std::vector<State>& q, double coefficient, int num_nodes);
+std::vector<State> make_wang_epsilon(const std::vector<State>& q, double coefficient,
+                                     int num_nodes);
 
 }  // namespace tfmb::flow

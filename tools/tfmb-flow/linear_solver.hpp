@@ -4,6 +4,7 @@
 // of threads.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "gas.hpp"
@@ -57,11 +58,18 @@ struct GmresWorkspace {
 };
 
 // Solves A x = b to ||b - A x|| <= rel_tol ||b|| or max_iterations, starting from x = 0.
-GmresResult gmres(const BlockSparseMatrix& a, const BlockIlu0& precond, const std::vector<double>& b,
+GmresResult gmres(const BlockSparseMatrix& a, const BlockIlu0& precond,
+                  const std::vector<double>& b, std::vector<double>& x, double rel_tol, int restart,
+                  int max_iterations, GmresWorkspace& workspace);
+GmresResult gmres(const BlockSparseMatrix& a, const BlockIlu0& precond,
+                  const std::vector<double>& b, std::vector<double>& x, double rel_tol, int restart,
+                  int max_iterations);
+
+// The same with the operator given as y = A x (e.g. matrix-free, by differences of residuals).
+using LinearOperator = std::function<void(const std::vector<double>& x, std::vector<double>& y)>;
+GmresResult gmres(const LinearOperator& a, const BlockIlu0& precond, const std::vector<double>& b,
                   std::vector<double>& x, double rel_tol, int restart, int max_iterations,
                   GmresWorkspace& workspace);
-GmresResult gmres(const BlockSparseMatrix& a, const BlockIlu0& precond, const std::vector<double>& b,
-                  std::vector<double>& x, double rel_tol, int restart, int max_iterations);
 
 // Deterministic dot product (fixed chunk partition, ordered sum of chunk sums).
 double dot_product(const std::vector<double>& a, const std::vector<double>& b);

@@ -54,6 +54,16 @@ int main(int argc, char** argv) {
                  "[-] Venkatakrishnan-Wang epsilon as a fraction of each variable's range (smaller: "
                  "stronger limiting at shocks; larger: smoother, more accurate boundary layers)")
       ->capture_default_str();
+  app.add_option("--wall-aligned-aspect-ratio", o.settings.wall_aligned_aspect_ratio,
+                 "[-] second order: at nodes whose neighbour distances differ by more than this factor and "
+                 "whose nearest boundary is a wall, gradients and reconstruction use wall-aligned vectors "
+                 "(needed on curved walls with thin wall layers; 0: Cartesian everywhere)")
+      ->check(CLI::NonNegativeNumber)->capture_default_str();
+  app.add_option("--matrix-free", o.settings.matrix_free,
+                 "second order: each pseudo-time step solves with the Jacobian of the second-order residual "
+                 "applied matrix-free, preconditioned by ILU(0) of the first-order Jacobian (false: the first-order "
+                 "Jacobian alone, cheaper per iteration but it caps the CFL on stretched wall layers)")
+      ->capture_default_str();
   app.add_option("--entropy-fix", o.settings.entropy_fix,
                  "[-] Harten entropy-fix width as a fraction of the sound speed")->capture_default_str();
   app.add_option("--max-iterations", o.settings.max_iterations, "nonlinear iteration limit")->capture_default_str();

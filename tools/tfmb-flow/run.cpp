@@ -392,6 +392,8 @@ RunResult run(const RunOptions& o, const Logger& log) {
       << "\nresidual_drop = " << settings.residual_drop << "\nentropy_fix = " << settings.entropy_fix
       << "\nfarfield_flux = \"" << o.farfield_flux << "\""
       << "\nlimiter = " << (settings.limiter ? "true" : "false") << "\nvenkat_wang = " << settings.venkat_wang
+      << "\nwall_aligned_aspect_ratio = " << settings.wall_aligned_aspect_ratio
+      << "\nmatrix_free = " << (settings.matrix_free ? "true" : "false")
       << "\nthreads = " << settings.threads << "\n";
     prov.settings = s.str();
     prov.inputs = {o.mesh_file};

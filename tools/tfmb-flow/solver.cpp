@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 
 #include "flux_roe.hpp"
@@ -88,6 +89,29 @@ FlowSolver::FlowSolver(const Mesh& mesh, Geometry geometry, const PerfectGas& ga
   }
   dual_ = build_dual(mesh_, geometry);
   lsq_ = build_lsq_gradient(dual_);
+  {
+    std::vector<char> wall_curves(bcs_.size(), 0);
+    for (std::size_t b = 0; b < bcs_.size(); ++b) {
+      wall_curves[b] = bcs_[b].kind == BcKind::slip_wall || bcs_[b].no_slip();
+    }
+    if (settings_.order >= 2 && settings_.wall_aligned_aspect_ratio > 0.0) {
+      recon_stencil_ = wall_aligned_stencil(mesh_, dual_, wall_curves, settings_.wall_aligned_aspect_ratio,
+                                            &recon_mapped_nodes_);
+    } else {
+      recon_stencil_ = cartesian_stencil(dual_);
+    }
+    recon_mapped_ = recon_mapped_nodes_ > 0;
+    recon_lsq_ = recon_mapped_ ? build_lsq_gradient(dual_, recon_stencil_.to_neighbour) : lsq_;
+    const auto& inc = dual_.node_edges;
+    recon_half_ij_.resize(dual_.num_edges());
+    recon_half_ji_.resize(dual_.num_edges());
+    for (int i = 0; i < dual_.num_nodes; ++i) {
+      for (int k = inc.offsets[i]; k < inc.offsets[i + 1]; ++k) {
+        const Vec2 half = 0.5 * recon_stencil_.to_neighbour[k];
+        (inc.sign[k] > 0.0 ? recon_half_ij_ : recon_half_ji_)[inc.edge[k]] = half;
+      }
+    }
+  }
   venkat_eps_ = make_venkat_epsilon(dual_, settings_.venkat_k, settings_.reference_state);
   jac_ = make_pattern(dual_.num_nodes, dual_.edges);
   edge_pos_ij_.resize(dual_.num_edges());
@@ -359,10 +383,12 @@ void FlowSolver::compute_residual(bool update_limiter) {
   const bool axi = dual_.geometry == Geometry::axisymmetric;
   update_eddy_viscosity();
   const bool turbulent = settings_.turbulent;
-  if (second || settings_.viscous) lsq_gradients(dual_, lsq_, w_, grad_);
+  if ((second && !recon_mapped_) || settings_.viscous) lsq_gradients(dual_, lsq_, w_, grad_);
+  if (second && recon_mapped_) lsq_gradients(dual_, recon_lsq_, w_, recon_grad_);
+  const auto& rgrad = recon_mapped_ ? recon_grad_ : grad_;
   if (second && settings_.limiter && update_limiter) {
     if (settings_.venkat_wang > 0.0) venkat_eps_ = make_wang_epsilon(w_, settings_.venkat_wang, n);
-    venkatakrishnan_limiter(dual_, w_, grad_, venkat_eps_, phi_);
+    venkatakrishnan_limiter(dual_, recon_stencil_.to_neighbour, w_, rgrad, venkat_eps_, phi_);
   }
   const bool limit = settings_.limiter;
 
@@ -374,13 +400,15 @@ void FlowSolver::compute_residual(bool update_limiter) {
     State wl = w_[i];
     State wr = w_[j];
     if (second) {
-      // reconstruction to the edge midpoint (Blazek 2015, eq. 5.57)
-      const Vec2 half = 0.5 * (dual_.coords[j] - dual_.coords[i]);
+      // reconstruction to the edge midpoint (Blazek 2015, eq. 5.57), each side along its own
+      // stencil vector (Cartesian, or wall-aligned in stretched wall layers)
+      const Vec2 hl = recon_half_ij_[e];
+      const Vec2 hr = recon_half_ji_[e];
       for (int v = 0; v < 4; ++v) {
         const double pl = limit ? phi_[i][v] : 1.0;
         const double pr = limit ? phi_[j][v] : 1.0;
-        wl[v] += pl * (grad_[i][2 * v] * half.x + grad_[i][2 * v + 1] * half.y);
-        wr[v] -= pr * (grad_[j][2 * v] * half.x + grad_[j][2 * v + 1] * half.y);
+        wl[v] += pl * (rgrad[i][2 * v] * hl.x + rgrad[i][2 * v + 1] * hl.y);
+        wr[v] += pr * (rgrad[j][2 * v] * hr.x + rgrad[j][2 * v + 1] * hr.y);
       }
       if (!(wl[0] > 0.0 && wl[3] > 0.0)) wl = w_[i];
       if (!(wr[0] > 0.0 && wr[3] > 0.0)) wr = w_[j];
@@ -427,16 +455,17 @@ void FlowSolver::compute_residual(bool update_limiter) {
     spectral_radius_[i] = lambda;
   }
 
-  for (const auto& face : dual_.boundary_faces) {
+  for (std::size_t face_index = 0; face_index < dual_.boundary_faces.size(); ++face_index) {
+    const auto& face = dual_.boundary_faces[face_index];
     const State& w = w_[face.node];
     State wf = w;
     if (second) {
       // State at the middle of the half edge: makes the boundary flux integral exact for linear
       // variations (e.g. the wall pressure on a curved wall), keeping the scheme second order.
-      const Vec2 r = face.center - dual_.coords[face.node];
+      const Vec2 r = recon_stencil_.to_face[face_index];
       for (int v = 0; v < 4; ++v) {
         const double p = limit ? phi_[face.node][v] : 1.0;
-        wf[v] += p * (grad_[face.node][2 * v] * r.x + grad_[face.node][2 * v + 1] * r.y);
+        wf[v] += p * (rgrad[face.node][2 * v] * r.x + rgrad[face.node][2 * v + 1] * r.y);
       }
       if (!(wf[0] > 0.0 && wf[3] > 0.0)) wf = w;
     }
@@ -609,6 +638,43 @@ void FlowSolver::assemble_jacobian(const std::vector<double>& diag_scale) {
   }
 }
 
+LinearOperator FlowSolver::matrix_free_operator(const std::vector<double>& diag_scale) {
+  // Rows the assembled Jacobian replaces (strong wall conditions, imposed far-field nodes) keep
+  // their assembled form; every other row is V/dt x + (R(u + eps x) - R(u)) / eps with the
+  // limiter frozen at its current value, so the product is the derivative of the residual the
+  // iteration drives to zero.
+  const int n = dual_.num_nodes;
+  auto base_u = std::make_shared<std::vector<State>>(u_);
+  auto base_res = std::make_shared<std::vector<State>>(res_);
+  double u_norm2 = 0.0;
+  for (const auto& s : u_) {
+    for (double c : s) u_norm2 += c * c;
+  }
+  const double u_norm = std::sqrt(u_norm2);
+  return [this, n, base_u, base_res, u_norm, &diag_scale](const std::vector<double>& x, std::vector<double>& y) {
+    jac_.multiply(x, y);
+    const double x_norm = std::sqrt(dot_product(x, x));
+    if (x_norm == 0.0) return;
+    // relative perturbation ~1e-7: half the digits for the difference, half for its accuracy
+    // (Knoll and Keyes 2004, eq. 11, with the state norm as the scale)
+    const double eps = 1e-7 * std::max(u_norm, 1.0) / x_norm;
+    for (int i = 0; i < n; ++i) {
+      for (int v = 0; v < 4; ++v) u_[i][v] = (*base_u)[i][v] + eps * x[4 * i + v];
+    }
+    compute_residual(false);
+    u_ = *base_u;
+    for (int i = 0; i < n; ++i) {
+      if (fixed_node_[i]) continue;
+      const bool wall = wall_node_bc_[i] >= 0;
+      const bool iso = wall && bcs_[wall_node_bc_[i]].kind == BcKind::wall_isothermal;
+      for (int v = 0; v < 4; ++v) {
+        if (wall && (v == 1 || v == 2 || (v == 3 && iso))) continue;
+        y[4 * i + v] = diag_scale[i] * x[4 * i + v] + (res_[i][v] - (*base_res)[i][v]) / eps;
+      }
+    }
+  };
+}
+
 SolveReport FlowSolver::solve() {
   const ScopedThreads threads(settings_.threads);
   using clock = std::chrono::steady_clock;
@@ -752,8 +818,15 @@ SolveReport FlowSolver::solve() {
       }
     }
     ilu_.factorize(jac_, settings_.ilu_partitions);
-    const GmresResult lin = gmres(jac_, ilu_, rhs, du, settings_.linear_tolerance, settings_.gmres_restart,
-                                  settings_.gmres_max_iterations, gmres_workspace_);
+    GmresResult lin;
+    if (settings_.order >= 2 && settings_.matrix_free) {
+      lin = gmres(matrix_free_operator(diag_scale), ilu_, rhs, du, settings_.linear_tolerance, settings_.gmres_restart,
+                  settings_.gmres_max_iterations, gmres_workspace_);
+      compute_residual(false);  // back to the state's own residual, gradients and viscosities
+    } else {
+      lin = gmres(jac_, ilu_, rhs, du, settings_.linear_tolerance, settings_.gmres_restart,
+                  settings_.gmres_max_iterations, gmres_workspace_);
+    }
     rec.linear_iterations = lin.iterations;
     rec.linear_residual = lin.relative_residual;
     report.linear_iterations += lin.iterations;

@@ -25,6 +25,16 @@ struct SolverSettings {
   // When > 0, use Wang's epsilon = venkat_wang * (global range of each variable) instead of
   // the mesh-size based (K h)^3; keeps smooth boundary layers unlimited.
   double venkat_wang = 0.1;
+  // Second order: measure the reconstruction at the nodes of stretched wall layers in the
+  // wall-aligned frame (wall_aligned_stencil) where a node's neighbour distances differ by more
+  // than this factor; 0: Cartesian everywhere.
+  double wall_aligned_aspect_ratio = 4.0;
+  // Second order: solve each pseudo-time step with the operator V/dt + dR/du of the
+  // second-order residual applied matrix-free (residual differences), preconditioned by ILU(0)
+  // of the first-order Jacobian (Jacobian-free Newton-Krylov, Knoll and Keyes 2004, J. Comput.
+  // Phys. 193:357). false: the first-order Jacobian itself (defect correction), whose mismatch
+  // with the second-order residual caps the CFL number on stretched wall layers.
+  bool matrix_free = false;
   // Freeze the limiter once the density residual has dropped by this factor (0: never), or when
   // it has not reached a new minimum for limiter_stall_iterations; stops limiter chatter from
   // stalling convergence near shocks (the frozen limiter is a fixed, valid scheme).
@@ -180,6 +190,8 @@ class FlowSolver {
   double turbulence_step(double cfl);  // returns the RMS of d nu_tilde / dt
   void set_freestream_nu_tilde();
   State residual_norm() const;
+  // y = (V/dt + dR/du) x of the current residual, see SolverSettings::matrix_free
+  LinearOperator matrix_free_operator(const std::vector<double>& diag_scale);
 
   Mesh mesh_;                                     // internal numbering
   std::vector<int> new_of_old_, old_of_new_;
@@ -189,6 +201,14 @@ class FlowSolver {
   std::vector<BoundaryCondition> bcs_;
   SolverSettings settings_;
   LsqGradient lsq_;
+  // second-order reconstruction: its stencil vectors and gradient (the viscous terms keep the
+  // Cartesian lsq_/grad_); recon_mapped_ false when they equal the Cartesian ones
+  StencilGeometry recon_stencil_;
+  LsqGradient recon_lsq_;
+  bool recon_mapped_ = false;
+  int recon_mapped_nodes_ = 0;
+  std::vector<Vec2> recon_half_ij_, recon_half_ji_;  // per edge: half the vector from i to j, from j to i
+  std::vector<std::array<double, 8>> recon_grad_;
   std::vector<State> venkat_eps_;
   std::vector<int> edge_pos_ij_, edge_pos_ji_;   // BSR positions of the off-diagonal blocks
   std::vector<int> wall_node_bc_;                 // -1 or the no-slip bc index per node
