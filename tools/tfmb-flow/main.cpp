@@ -1,5 +1,5 @@
-// tfmb-flow: steady 2D compressible flow (Euler, laminar Navier-Stokes or Spalart-Allmaras RANS, planar or
-// axisymmetric) on a mixed triangle/quad flow mesh.
+// tfmb-flow: steady 2D compressible flow (Euler, laminar Navier-Stokes or Spalart-Allmaras RANS,
+// planar or axisymmetric) on a mixed triangle/quad flow mesh.
 //
 // Sample runs:
 //   tfmb-flow flowmesh.h5 --p0 5.5e5 --T0 294 --ambient-pressure 101330 -o flow.h5
@@ -19,70 +19,101 @@ int main(int argc, char** argv) {
   tfmb::flow::RunOptions o;
   std::filesystem::path restart;
   std::optional<double> wall_temperature, throat_area;
-  app.add_option("mesh", o.mesh_file, "flow mesh (tfmb/flowmesh)")->required()->check(CLI::ExistingFile);
+  app.add_option("mesh", o.mesh_file, "flow mesh (tfmb/flowmesh)")
+      ->required()
+      ->check(CLI::ExistingFile);
   tfmb::cli::add_output_option(app, o.output, "flow file (tfmb/flow)");
-  app.add_option("--restart", restart, "start from this flow file (same mesh topology, e.g. before a wall deformation)")
+  app.add_option("--restart", restart,
+                 "start from this flow file (same mesh topology, e.g. before a wall deformation)")
       ->check(CLI::ExistingFile);
   app.add_option("--p0", o.stagnation_pressure, "[Pa] inflow total pressure");
   app.add_option("--T0", o.stagnation_temperature, "[K] inflow total temperature");
-  app.add_option("--ambient-pressure", o.ambient_pressure, "[Pa] outflow and far-field static pressure")
+  app.add_option("--ambient-pressure", o.ambient_pressure,
+                 "[Pa] outflow and far-field static pressure")
       ->capture_default_str();
   app.add_option("--ambient-temperature", o.ambient_temperature, "[K] far-field static temperature")
       ->capture_default_str();
-  app.add_option("--freestream-mach", o.freestream_mach, "[-] far-field Mach number along +x")->capture_default_str();
-  app.add_option("--inflow-angle", o.inflow_angle, "[deg] inflow direction from +x")->capture_default_str();
+  app.add_option("--freestream-mach", o.freestream_mach, "[-] far-field Mach number along +x")
+      ->capture_default_str();
+  app.add_option("--inflow-angle", o.inflow_angle, "[deg] inflow direction from +x")
+      ->capture_default_str();
   app.add_option("--gamma", o.gamma, "[-] ratio of specific heats")->capture_default_str();
-  app.add_option("--gas-constant", o.gas_constant, "[J/(kg K)] specific gas constant")->capture_default_str();
-  app.add_option("--model", o.model,
-                 "euler, laminar (Sutherland viscosity, Pr 0.72), sa (Spalart-Allmaras RANS with ft2, "
-                 "SA-neg for negative nu_tilde, Pr_t 0.9) or sa-noft2")
-      ->check(CLI::IsMember({"euler", "laminar", "sa", "sa-noft2"}))->capture_default_str();
-  app.add_option("--heat-transfer-dt", o.heat_transfer_dt,
-                 "[K] viscous runs with adiabatic walls: after converging, a probe run with the walls this much "
-                 "below the adiabatic wall temperature gives the heat transfer coefficient (0: skip)")
+  app.add_option("--gas-constant", o.gas_constant, "[J/(kg K)] specific gas constant")
       ->capture_default_str();
-  app.add_option("--inflow-ramp", o.inflow_ramp,
-                 "iterations over which the inflow total pressure rises from the ambient pressure to --p0 "
-                 "(-1: 50 for a jet into a far field started from rest, else 0)")
+  app.add_option(
+         "--model", o.model,
+         "euler, laminar (Sutherland viscosity, Pr 0.72), sa (Spalart-Allmaras RANS with ft2, "
+         "SA-neg for negative nu_tilde, Pr_t 0.9) or sa-noft2")
+      ->check(CLI::IsMember({"euler", "laminar", "sa", "sa-noft2"}))
       ->capture_default_str();
-  app.add_option("--wall-temperature", wall_temperature, "[K] isothermal no-slip walls (laminar; default adiabatic)");
+  app.add_option(
+         "--heat-transfer-dt", o.heat_transfer_dt,
+         "[K] viscous runs with adiabatic walls: after converging, a probe run with the walls this "
+         "much "
+         "below the adiabatic wall temperature gives the heat transfer coefficient (0: skip)")
+      ->capture_default_str();
+  app.add_option(
+         "--inflow-ramp", o.inflow_ramp,
+         "iterations over which the inflow total pressure rises from the ambient pressure to --p0 "
+         "(-1: 50 for a jet into a far field started from rest, else 0)")
+      ->capture_default_str();
+  app.add_option("--wall-temperature", wall_temperature,
+                 "[K] isothermal no-slip walls (laminar; default adiabatic)");
   app.add_option("--throat-area", throat_area,
-                 "[m] throat height per unit depth (planar) or [m^2] area (axisymmetric) for the discharge coefficient");
+                 "[m] throat height per unit depth (planar) or [m^2] area (axisymmetric) for the "
+                 "discharge coefficient");
   app.add_option("--order", o.settings.order, "spatial order of the convective fluxes, 1 or 2")
-      ->check(CLI::Range(1, 2))->capture_default_str();
-  app.add_option("--limiter-coefficient", o.settings.venkat_wang,
-                 "[-] Venkatakrishnan-Wang epsilon as a fraction of each variable's range (smaller: "
-                 "stronger limiting at shocks; larger: smoother, more accurate boundary layers)")
+      ->check(CLI::Range(1, 2))
       ->capture_default_str();
-  app.add_option("--wall-aligned-aspect-ratio", o.settings.wall_aligned_aspect_ratio,
-                 "[-] second order: at nodes whose neighbour distances differ by more than this factor and "
-                 "whose nearest boundary is a wall, gradients and reconstruction use wall-aligned vectors "
-                 "(needed on curved walls with thin wall layers; 0: Cartesian everywhere)")
-      ->check(CLI::NonNegativeNumber)->capture_default_str();
-  app.add_option("--matrix-free", o.settings.matrix_free,
-                 "second order: each pseudo-time step solves with the Jacobian of the second-order residual "
-                 "applied matrix-free, preconditioned by ILU(0) of the first-order Jacobian (false: the first-order "
-                 "Jacobian alone, cheaper per iteration but it caps the CFL on stretched wall layers)")
+  app.add_option(
+         "--limiter-coefficient", o.settings.venkat_wang,
+         "[-] Venkatakrishnan-Wang epsilon as a fraction of each variable's range (smaller: "
+         "stronger limiting at shocks; larger: smoother, more accurate boundary layers)")
+      ->capture_default_str();
+  app.add_option(
+         "--wall-aligned-aspect-ratio", o.settings.wall_aligned_aspect_ratio,
+         "[-] second order: at nodes whose neighbour distances differ by more than this factor and "
+         "whose nearest boundary is a wall, gradients and reconstruction use wall-aligned vectors "
+         "(needed on curved walls with thin wall layers; 0: Cartesian everywhere)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  app.add_option(
+         "--matrix-free", o.settings.matrix_free,
+         "second order: each pseudo-time step solves with the Jacobian of the second-order "
+         "residual "
+         "applied matrix-free, preconditioned by ILU(0) of the first-order Jacobian (false: the "
+         "first-order "
+         "Jacobian alone, cheaper per iteration but it caps the CFL on stretched wall layers)")
       ->capture_default_str();
   app.add_option("--entropy-fix", o.settings.entropy_fix,
-                 "[-] Harten entropy-fix width as a fraction of the sound speed")->capture_default_str();
-  app.add_option("--max-iterations", o.settings.max_iterations, "nonlinear iteration limit")->capture_default_str();
-  app.add_option("--residual-drop", o.settings.residual_drop,
-                 "[-] converged when the density residual fell by this factor")->capture_default_str();
-  app.add_option("--cfl-start", o.settings.cfl_start, "[-] initial CFL number")->capture_default_str();
-  app.add_option("--cfl-max", o.settings.cfl_max, "[-] largest CFL number of the ramp")->capture_default_str();
-  app.add_option("--cfl-stall-iterations", o.settings.cfl_stall_iterations,
-                 "halve the CFL ceiling after this many iterations without a new residual minimum (0: never)")
+                 "[-] Harten entropy-fix width as a fraction of the sound speed")
       ->capture_default_str();
-  app.add_option("--farfield-flux", o.farfield_flux,
-                 "far-field faces: roe (Roe flux against the free stream, differentiable: converges on "
-                 "jets into air at rest) or riemann (boundary state from the 1D Riemann invariants)")
-      ->check(CLI::IsMember({"roe", "riemann"}))->capture_default_str();
+  app.add_option("--max-iterations", o.settings.max_iterations, "nonlinear iteration limit")
+      ->capture_default_str();
+  app.add_option("--residual-drop", o.settings.residual_drop,
+                 "[-] converged when the density residual fell by this factor")
+      ->capture_default_str();
+  app.add_option("--cfl-start", o.settings.cfl_start, "[-] initial CFL number")
+      ->capture_default_str();
+  app.add_option("--cfl-max", o.settings.cfl_max, "[-] largest CFL number of the ramp")
+      ->capture_default_str();
+  app.add_option("--cfl-stall-iterations", o.settings.cfl_stall_iterations,
+                 "halve the CFL ceiling after this many iterations without a new residual minimum "
+                 "(0: never)")
+      ->capture_default_str();
+  app.add_option(
+         "--farfield-flux", o.farfield_flux,
+         "far-field faces: roe (Roe flux against the free stream, differentiable: converges on "
+         "jets into air at rest) or riemann (boundary state from the 1D Riemann invariants)")
+      ->check(CLI::IsMember({"roe", "riemann"}))
+      ->capture_default_str();
   app.add_flag("--exact-jacobian", o.settings.exact_jacobian,
-               "first-order Roe Jacobian by finite differences (dissipation included) instead of frozen dissipation");
-  app.add_option("--stationary-tolerance", o.settings.stationary_tolerance,
-                 "[-] also converged when every wall pressure (relative to p0) and the wall pressure force "
-                 "change by less than this per iteration, --stationary-iterations times in a row (0: off)")
+               "first-order Roe Jacobian by finite differences (dissipation included) instead of "
+               "frozen dissipation");
+  app.add_option(
+         "--stationary-tolerance", o.settings.stationary_tolerance,
+         "[-] also converged when every wall pressure (relative to p0) and the wall pressure force "
+         "change by less than this per iteration, --stationary-iterations times in a row (0: off)")
       ->capture_default_str();
   app.add_option("--stationary-iterations", o.settings.stationary_iterations,
                  "consecutive iterations the stationarity criterion must hold")
@@ -90,20 +121,28 @@ int main(int argc, char** argv) {
   app.add_option("--linear-tolerance", o.settings.linear_tolerance,
                  "[-] relative GMRES tolerance per nonlinear iteration")
       ->capture_default_str();
-  app.add_option("--gmres-max-iterations", o.settings.gmres_max_iterations, "GMRES iteration limit per nonlinear iteration")
+  app.add_option("--gmres-max-iterations", o.settings.gmres_max_iterations,
+                 "GMRES iteration limit per nonlinear iteration")
       ->capture_default_str();
-  app.add_option("--print-every", o.settings.print_every, "residual line on stderr every N iterations (0: none)")
+  app.add_option("--gmres-restart", o.settings.gmres_restart,
+                 "GMRES Krylov basis size before a restart")
+      ->check(CLI::Range(1, 500))
+      ->capture_default_str();
+  app.add_option("--print-every", o.settings.print_every,
+                 "residual line on stderr every N iterations (0: none)")
       ->capture_default_str();
   o.settings.print_every = 10;
 
   const std::string command = tfmb::cli::command_line(argc, argv);
   return tfmb::cli::run_main(app, argc, argv, [&] {
     tfmb::Logger logger("tfmb-flow", common.verbosity());
-    if (!restart.empty()) o.restart_file = restart;
+    if (!restart.empty())
+      o.restart_file = restart;
     o.wall_temperature = wall_temperature;
     o.throat_area = throat_area;
     o.settings.threads = common.threads > 0 ? common.threads : 1;
-    if (common.quiet) o.settings.print_every = 0;
+    if (common.quiet)
+      o.settings.print_every = 0;
     o.command_line = command;
     const tfmb::flow::RunResult r = tfmb::flow::run(o, logger);
     return r.report.converged ? 0 : 1;

@@ -18,10 +18,10 @@
 namespace tfmb::flow {
 
 struct SolverSettings {
-  int order = 2;                  // 1 or 2 (spatial accuracy of the convective fluxes)
-  double entropy_fix = 0.1;       // Harten delta as a fraction of the sound speed
-  bool limiter = true;            // Venkatakrishnan limiter on the reconstruction
-  double venkat_k = 5.0;          // limiter smoothness constant K (mesh-size based epsilon)
+  int order = 2;             // 1 or 2 (spatial accuracy of the convective fluxes)
+  double entropy_fix = 0.1;  // Harten delta as a fraction of the sound speed
+  bool limiter = true;       // Venkatakrishnan limiter on the reconstruction
+  double venkat_k = 5.0;     // limiter smoothness constant K (mesh-size based epsilon)
   // When > 0, use Wang's epsilon = venkat_wang * (global range of each variable) instead of
   // the mesh-size based (K h)^3; keeps smooth boundary layers unlimited.
   double venkat_wang = 0.1;
@@ -43,8 +43,8 @@ struct SolverSettings {
   State reference_state{1.0, 1.0, 1.0, 1.0};  // rho, |u|, |u|, p scales for the limiter
   double cfl_start = 5.0;
   double cfl_max = 1e4;
-  double cfl_growth = 2.0;        // largest CFL increase per iteration
-  double ser_exponent = 1.0;      // CFL = cfl_start * (R_max / R_n)^ser_exponent
+  double cfl_growth = 2.0;    // largest CFL increase per iteration
+  double ser_exponent = 1.0;  // CFL = cfl_start * (R_max / R_n)^ser_exponent
   // Besides SER, multiply the CFL by this factor after every update taken whole (no
   // relaxation) that did not raise the density residual by more than cfl_adaptive_residual_rise;
   // otherwise multiply by 0.7. The larger of the two laws wins. 0 or 1: SER only.
@@ -62,7 +62,7 @@ struct SolverSettings {
   int inflow_ramp_iterations = 0;
   double inflow_ramp_start_pressure = 0.0;  // [Pa]
   int max_iterations = 500;
-  double residual_drop = 1e-8;    // converged when the density residual fell by this factor
+  double residual_drop = 1e-8;  // converged when the density residual fell by this factor
   // When > 0, also converged when the pressure at every wall node and the pressure force on the
   // walls change by less than this (relative to the reference pressure and to the force) per
   // iteration, stationary_iterations times in a row: what a coupled run needs from the flow.
@@ -71,7 +71,7 @@ struct SolverSettings {
   // Reference density residual for the drop (0: the largest residual of this run). A restart
   // passes the reference of the run it continues, so a converged state stays converged.
   double residual_reference = 0.0;
-  double linear_tolerance = 0.02; // relative, per nonlinear iteration
+  double linear_tolerance = 0.02;  // relative, per nonlinear iteration
   int gmres_restart = 20;
   // ILU(0) partitions (independent row ranges, see BlockIlu0): 2 lets two threads share the
   // preconditioner; the same value gives the same result on any number of threads.
@@ -83,7 +83,7 @@ struct SolverSettings {
   // First-order Jacobian of the Roe flux: frozen dissipation (default) or by finite differences
   // of the full Roe flux, dissipation included (twice the assembly cost).
   bool exact_jacobian = false;
-  int print_every = 0;            // residual line on stderr every N iterations (0: silent)
+  int print_every = 0;  // residual line on stderr every N iterations (0: silent)
   bool viscous = false;
   ViscousModel viscosity;
   // Spalart-Allmaras RANS (needs viscous): the nu_tilde equation is solved segregated, one
@@ -92,7 +92,7 @@ struct SolverSettings {
   bool turbulent = false;
   bool sa_ft2 = true;                // the ft2 term of standard SA (TMR "SA"); false: SA-noft2
   double sa_freestream_ratio = 3.0;  // nu_tilde / nu entering at inflow and far field (TMR)
-  int threads = 1;                // OpenMP threads used inside solve() and residual()
+  int threads = 1;                   // OpenMP threads used inside solve() and residual()
   // Renumber the nodes internally (reverse Cuthill-McKee): a banded matrix makes ILU(0) a much
   // stronger preconditioner. Node ids at the interface stay those of the mesh given.
   bool renumber = true;
@@ -100,35 +100,35 @@ struct SolverSettings {
 
 struct IterationRecord {
   int iteration = 0;
-  State residual{};        // RMS of residual / volume per equation
+  State residual{};  // RMS of residual / volume per equation
   double cfl = 0.0;
-  double relaxation = 1.0; // smallest fraction of the Newton update applied at a node
+  double relaxation = 1.0;  // smallest fraction of the Newton update applied at a node
   int linear_iterations = 0;
   double linear_residual = 0.0;
   double turbulence_residual = 0.0;  // RMS of d nu_tilde / dt [m^2/s^2] (0 without SA)
-  double wall_time = 0.0;  // since the start of solve() [s]
+  double wall_time = 0.0;            // since the start of solve() [s]
 };
 
 struct SolveReport {
   bool converged = false;
   bool converged_by_stationarity = false;  // (rather than by the residual drop)
-  double wall_pressure_change = 0.0;  // last iteration's largest relative wall-pressure change
-  double wall_force_change = 0.0;     // last iteration's relative change of the wall pressure force
+  double wall_pressure_change = 0.0;       // last iteration's largest relative wall-pressure change
+  double wall_force_change = 0.0;  // last iteration's relative change of the wall pressure force
   int iterations = 0;
   long linear_iterations = 0;
-  int backoffs = 0;            // CFL back-offs after non-physical states
-  double residual_drop = 1.0;  // final density residual / reference density residual
+  int backoffs = 0;                 // CFL back-offs after non-physical states
+  double residual_drop = 1.0;       // final density residual / reference density residual
   double residual_reference = 0.0;  // the reference used (RMS of residual/volume)
-  double wall_time = 0.0;      // [s]
+  double wall_time = 0.0;           // [s]
   std::vector<IterationRecord> history;
 };
 
 // Integrated boundary fluxes over one boundary curve, out of the domain; per unit depth
 // (planar) or per radian (axisymmetric).
 struct BoundaryIntegral {
-  double mass_flow = 0.0;  // [kg/s]
-  Vec2 force{};            // momentum flux plus pressure force on the boundary [N]
-  double energy_flow = 0.0;// [W]
+  double mass_flow = 0.0;    // [kg/s]
+  Vec2 force{};              // momentum flux plus pressure force on the boundary [N]
+  double energy_flow = 0.0;  // [W]
 };
 
 // Quantities along one boundary curve, at its nodes in curve order.
@@ -148,8 +148,8 @@ class FlowSolver {
  public:
   // bcs[b] applies to mesh.boundaries[b]. Node ids and per-node arrays at this interface use the
   // numbering of `mesh`; dual() is in the solver's internal numbering.
-  FlowSolver(const Mesh& mesh, Geometry geometry, const PerfectGas& gas, std::vector<BoundaryCondition> bcs,
-             const SolverSettings& settings);
+  FlowSolver(const Mesh& mesh, Geometry geometry, const PerfectGas& gas,
+             std::vector<BoundaryCondition> bcs, const SolverSettings& settings);
 
   void set_uniform(const State& w);
   void set_primitive(const std::vector<State>& w);
@@ -193,7 +193,7 @@ class FlowSolver {
   // y = (V/dt + dR/du) x of the current residual, see SolverSettings::matrix_free
   LinearOperator matrix_free_operator(const std::vector<double>& diag_scale);
 
-  Mesh mesh_;                                     // internal numbering
+  Mesh mesh_;  // internal numbering
   std::vector<int> new_of_old_, old_of_new_;
   std::vector<Vec2> coords_external_;
   DualMesh dual_;
@@ -207,11 +207,12 @@ class FlowSolver {
   LsqGradient recon_lsq_;
   bool recon_mapped_ = false;
   int recon_mapped_nodes_ = 0;
-  std::vector<Vec2> recon_half_ij_, recon_half_ji_;  // per edge: half the vector from i to j, from j to i
+  std::vector<Vec2> recon_half_ij_,
+      recon_half_ji_;  // per edge: half the vector from i to j, from j to i
   std::vector<std::array<double, 8>> recon_grad_;
   std::vector<State> venkat_eps_;
-  std::vector<int> edge_pos_ij_, edge_pos_ji_;   // BSR positions of the off-diagonal blocks
-  std::vector<int> wall_node_bc_;                 // -1 or the no-slip bc index per node
+  std::vector<int> edge_pos_ij_, edge_pos_ji_;  // BSR positions of the off-diagonal blocks
+  std::vector<int> wall_node_bc_;               // -1 or the no-slip bc index per node
   // Nodes on a far field whose free stream enters supersonically: every characteristic comes
   // from outside, so the node state is imposed strongly (conservative, per node; empty state
   // marks free nodes via fixed_node_).
@@ -221,7 +222,7 @@ class FlowSolver {
   std::vector<State> u_, w_, res_, phi_, edge_flux_;
   std::vector<std::array<double, 8>> grad_;
   std::vector<double> nu_tilde_, eddy_viscosity_, wall_distance_;
-  std::vector<double> spectral_radius_;           // sum over faces of (|V.n| + c|n|) per node
+  std::vector<double> spectral_radius_;  // sum over faces of (|V.n| + c|n|) per node
   BlockSparseMatrix jac_;
   BlockIlu0 ilu_;
   ScalarIlu0 sa_ilu_;
