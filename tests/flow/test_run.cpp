@@ -17,12 +17,14 @@ using namespace tfmb::flow;
 namespace {
 
 std::filesystem::path temp_dir() {
-  const auto d = std::filesystem::temp_directory_path() / ("tfmb_flow_run_" + std::to_string(::getpid()));
+  const auto d =
+      std::filesystem::temp_directory_path() / ("tfmb_flow_run_" + std::to_string(::getpid()));
   std::filesystem::create_directories(d);
   return d;
 }
 
-void write_flowmesh(const std::filesystem::path& file, const flow::Mesh& m, bool drop_outlet = false) {
+void write_flowmesh(const std::filesystem::path& file, const flow::Mesh& m,
+                    bool drop_outlet = false) {
   formats::Mesh fm;
   fm.points.resize(static_cast<Eigen::Index>(m.points.size()), 2);
   for (std::size_t i = 0; i < m.points.size(); ++i) {
@@ -31,16 +33,19 @@ void write_flowmesh(const std::filesystem::path& file, const flow::Mesh& m, bool
   }
   fm.triangles.resize(static_cast<Eigen::Index>(m.triangles.size()), 3);
   for (std::size_t c = 0; c < m.triangles.size(); ++c) {
-    for (int k = 0; k < 3; ++k) fm.triangles(static_cast<Eigen::Index>(c), k) = m.triangles[c][k];
+    for (int k = 0; k < 3; ++k)
+      fm.triangles(static_cast<Eigen::Index>(c), k) = m.triangles[c][k];
   }
   fm.quads.resize(static_cast<Eigen::Index>(m.quads.size()), 4);
   for (std::size_t c = 0; c < m.quads.size(); ++c) {
-    for (int k = 0; k < 4; ++k) fm.quads(static_cast<Eigen::Index>(c), k) = m.quads[c][k];
+    for (int k = 0; k < 4; ++k)
+      fm.quads(static_cast<Eigen::Index>(c), k) = m.quads[c][k];
   }
   const std::map<std::string, std::string> kinds = {
       {"symmetry", "symmetry"}, {"outlet", "outflow"}, {"wall", "wall"}, {"inlet", "inflow"}};
   for (const auto& b : m.boundaries) {
-    if (drop_outlet && b.name == "outlet") continue;
+    if (drop_outlet && b.name == "outlet")
+      continue;
     formats::Boundary fb;
     fb.kind = kinds.at(b.name);
     fb.edges.resize(static_cast<Eigen::Index>(b.edges.size()), 2);
@@ -81,8 +86,9 @@ TEST(FlowRun, NozzleEndToEndAndRestart) {
   RunOptions o = nozzle_options(dir);
   const RunResult r = run(o, log);
   ASSERT_TRUE(r.report.converged);
-  const double mdot_exact = Quasi1dNozzle(nparc::area_in, 0, 5, 10, 1.4, 0.75).mass_flow(nparc::kP0, nparc::kT0, 287.05) *
-                            nparc::kInch;
+  const double mdot_exact =
+      Quasi1dNozzle(nparc::area_in, 0, 5, 10, 1.4, 0.75).mass_flow(nparc::kP0, nparc::kT0, 287.05) *
+      nparc::kInch;
   EXPECT_NEAR(r.mass_flow, mdot_exact, 0.005 * mdot_exact);
   EXPECT_NEAR(r.discharge_coefficient, 1.0, 0.005);
   EXPECT_GT(r.thrust_x, 0.0);
@@ -92,7 +98,8 @@ TEST(FlowRun, NozzleEndToEndAndRestart) {
   const auto p = f.read_vector("/fields/point/pressure", 61 * 16);
   const auto wall_x = f.read_vector("/walls/wall/x");
   EXPECT_EQ(wall_x.size(), 61u);
-  for (std::size_t k = 1; k < wall_x.size(); ++k) EXPECT_GT(wall_x[k], wall_x[k - 1]);  // ordered
+  for (std::size_t k = 1; k < wall_x.size(); ++k)
+    EXPECT_GT(wall_x[k], wall_x[k - 1]);  // ordered
   EXPECT_TRUE(std::filesystem::exists(dir / "flow.xdmf"));
 
   // restart from the converged file: the limiter is evaluated afresh (it was frozen during the
@@ -117,7 +124,8 @@ TEST(FlowRun, RestartOnDeformedMeshOfSameTopology) {
   const RunResult first = run(o, log);
   ASSERT_TRUE(first.report.converged);
   flow::Mesh deformed = nparc::make_mesh(61, 16);
-  for (auto& p : deformed.points) p.y *= 1.0 + 0.01 * std::sin(3.14159 * p.x / (10.0 * nparc::kInch));
+  for (auto& p : deformed.points)
+    p.y *= 1.0 + 0.01 * std::sin(3.14159 * p.x / (10.0 * nparc::kInch));
   write_flowmesh(dir / "deformed.h5", deformed);
   RunOptions again = o;
   again.mesh_file = dir / "deformed.h5";
@@ -181,10 +189,47 @@ TEST(FlowRun, WallPressureStationarityCriterion) {
   const auto pa = a.read_vector("/walls/wall/pressure");
   const auto pb = b.read_vector("/walls/wall/pressure");
   double worst = 0.0;
-  for (std::size_t k = 0; k < pa.size(); ++k) worst = std::max(worst, std::abs(pa[k] - pb[k]) / nparc::kP0);
+  for (std::size_t k = 0; k < pa.size(); ++k)
+    worst = std::max(worst, std::abs(pa[k] - pb[k]) / nparc::kP0);
   std::printf("stationarity: %d iterations against %d; largest wall-pressure difference %.2e p0\n",
               r_early.report.iterations, r_full.report.iterations, worst);
   EXPECT_LT(worst, 1e-5);
-  EXPECT_NE(b.attr_string("/convergence", "criterion").find("met: stationarity"), std::string::npos);
+  EXPECT_NE(b.attr_string("/convergence", "criterion").find("met: stationarity"),
+            std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(FlowRun, FirstOrderStartThenSecondOrder) {
+  // --order 2 --first-order-start: one call converges first order, then second order from it;
+  // the history holds both stages and the result is the second-order one (the same as a
+  // separate restart would give)
+  const auto dir = temp_dir();
+  write_flowmesh(dir / "flowmesh.h5", nparc::make_mesh(61, 16));
+  std::ostringstream log_text;
+  const Logger log("tfmb-flow", Verbosity::normal, log_text);
+  RunOptions o = nozzle_options(dir);
+  o.settings.order = 2;
+  o.first_order_start = true;
+  const RunResult r = run(o, log);
+  ASSERT_TRUE(r.report.converged);
+  EXPECT_NE(log_text.str().find("first-order start: converged"), std::string::npos);
+  const h5::Reader f = formats::open_checked(o.output, "flow");
+  const auto history = f.read_matrix("/convergence/residual_history");
+  EXPECT_EQ(static_cast<std::size_t>(history.rows()), r.report.history.size());
+
+  RunOptions first = nozzle_options(dir);
+  first.settings.order = 1;
+  first.output = dir / "first.h5";
+  const RunResult r1 = run(first, log);
+  ASSERT_TRUE(r1.report.converged);
+  RunOptions second = nozzle_options(dir);
+  second.settings.order = 2;
+  second.restart_file = first.output;
+  second.output = dir / "second.h5";
+  const RunResult r2 = run(second, log);
+  ASSERT_TRUE(r2.report.converged);
+  EXPECT_GT(r.report.iterations, r1.report.iterations);
+  EXPECT_NEAR(r.mass_flow, r2.mass_flow, 1e-4 * r2.mass_flow);
+  EXPECT_NEAR(r.thrust_x, r2.thrust_x, 1e-4 * std::abs(r2.thrust_x));
   std::filesystem::remove_all(dir);
 }

@@ -77,13 +77,14 @@ int main(int argc, char** argv) {
          "(needed on curved walls with thin wall layers; 0: Cartesian everywhere)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  app.add_option(
-         "--matrix-free", o.settings.matrix_free,
-         "second order: each pseudo-time step solves with the Jacobian of the second-order "
-         "residual "
-         "applied matrix-free, preconditioned by ILU(0) of the first-order Jacobian (false: the "
-         "first-order "
-         "Jacobian alone, cheaper per iteration but it caps the CFL on stretched wall layers)")
+  app.add_flag("--first-order-start", o.first_order_start,
+               "with --order 2 and no --restart: converge at first order first, then continue "
+               "at second order from that state (a restart from a first-order run, in one call)");
+  app.add_option("--matrix-free", o.settings.matrix_free,
+                 "second order: each pseudo-time step solves with the Jacobian of the second-order "
+                 "residual applied matrix-free, preconditioned by ILU(0) of the first-order "
+                 "Jacobian (false: the first-order Jacobian alone, cheaper per iteration but it "
+                 "caps the CFL on stretched wall layers)")
       ->capture_default_str();
   app.add_option("--entropy-fix", o.settings.entropy_fix,
                  "[-] Harten entropy-fix width as a fraction of the sound speed")

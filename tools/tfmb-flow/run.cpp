@@ -40,9 +40,11 @@ LoadedMesh load_mesh(const std::filesystem::path& file) {
   const auto& fm = out.file_mesh;
   Mesh& m = out.mesh;
   m.points.resize(fm.node_count());
-  for (std::size_t i = 0; i < fm.node_count(); ++i) m.points[i] = {fm.points(i, 0), fm.points(i, 1)};
+  for (std::size_t i = 0; i < fm.node_count(); ++i)
+    m.points[i] = {fm.points(i, 0), fm.points(i, 1)};
   for (Eigen::Index r = 0; r < fm.triangles.rows(); ++r) {
-    m.triangles.push_back({static_cast<int>(fm.triangles(r, 0)), static_cast<int>(fm.triangles(r, 1)),
+    m.triangles.push_back({static_cast<int>(fm.triangles(r, 0)),
+                           static_cast<int>(fm.triangles(r, 1)),
                            static_cast<int>(fm.triangles(r, 2))});
   }
   for (Eigen::Index r = 0; r < fm.quads.rows(); ++r) {
@@ -85,9 +87,11 @@ std::vector<State> read_restart(const std::filesystem::path& file, const LoadedM
   const auto p = reader.read_vector("/fields/point/pressure", n);
   std::vector<State> w(n);
   for (std::size_t k = 0; k < n; ++k) {
-    if (!(rho[k] > 0.0) || !(p[k] > 0.0) || !std::isfinite(vel(k, 0)) || !std::isfinite(vel(k, 1))) {
-      throw BadInput(file.string() + ": /fields/point: node " + std::to_string(k) +
-                     " has a non-physical state (density and pressure must be positive and finite)");
+    if (!(rho[k] > 0.0) || !(p[k] > 0.0) || !std::isfinite(vel(k, 0)) ||
+        !std::isfinite(vel(k, 1))) {
+      throw BadInput(
+          file.string() + ": /fields/point: node " + std::to_string(k) +
+          " has a non-physical state (density and pressure must be positive and finite)");
     }
     w[k] = {rho[k], vel(k, 0), vel(k, 1), p[k]};
   }
@@ -118,13 +122,15 @@ RunResult run(const RunOptions& o, const Logger& log) {
   std::vector<int> outflow_curves, wall_curves, inflow_curves, nozzle_wall_curves;
   for (std::size_t b = 0; b < lm.kinds.size(); ++b) {
     const std::string& kind = lm.kinds[b];
-    const std::string where = o.mesh_file.string() + ": /mesh/boundaries/" + lm.mesh.boundaries[b].name;
+    const std::string where =
+        o.mesh_file.string() + ": /mesh/boundaries/" + lm.mesh.boundaries[b].name;
     BoundaryCondition bc;
     if (kind == "inflow") {
       require(o.stagnation_pressure > 0.0 && o.stagnation_temperature > 0.0,
               where + ": an inflow boundary needs --p0 and --T0");
       require(o.stagnation_pressure >= o.ambient_pressure,
-              "nozzle pressure ratio p0/p_ambient = " + num(o.stagnation_pressure / o.ambient_pressure) +
+              "nozzle pressure ratio p0/p_ambient = " +
+                  num(o.stagnation_pressure / o.ambient_pressure) +
                   " is below 1; raise --p0 or lower --ambient-pressure");
       bc.kind = BcKind::stagnation_inflow;
       bc.total_pressure = o.stagnation_pressure;
@@ -145,7 +151,8 @@ RunResult run(const RunOptions& o, const Logger& log) {
       nozzle_wall_curves.push_back(static_cast<int>(b));
       if (viscous) {
         bc.kind = o.wall_temperature ? BcKind::wall_isothermal : BcKind::wall_adiabatic;
-        if (o.wall_temperature) bc.wall_temperature = *o.wall_temperature;
+        if (o.wall_temperature)
+          bc.wall_temperature = *o.wall_temperature;
       } else {
         bc.kind = BcKind::slip_wall;
       }
@@ -194,10 +201,13 @@ RunResult run(const RunOptions& o, const Logger& log) {
     if (turbulent) {
       const h5::Reader reader(*o.restart_file);
       if (reader.is_dataset("/fields/point/nu_tilde")) {
-        const auto nu_tilde = reader.read_vector("/fields/point/nu_tilde", lm.file_mesh.node_count());
+        const auto nu_tilde =
+            reader.read_vector("/fields/point/nu_tilde", lm.file_mesh.node_count());
         solver.set_nu_tilde({nu_tilde.begin(), nu_tilde.end()});
       } else {
-        log.info("restart file has no /fields/point/nu_tilde: Spalart-Allmaras starts from the free-stream value");
+        log.info(
+            "restart file has no /fields/point/nu_tilde: Spalart-Allmaras starts from the "
+            "free-stream value");
       }
     }
     log.info("restart from " + o.restart_file->string());
@@ -207,17 +217,51 @@ RunResult run(const RunOptions& o, const Logger& log) {
     // internal flow: start at Mach 0.2 from the inflow total conditions, along the inflow angle
     const double m0 = 0.2;
     const double t = o.stagnation_temperature / (1.0 + 0.5 * (o.gamma - 1.0) * m0 * m0);
-    const double p = o.stagnation_pressure * std::pow(t / o.stagnation_temperature, o.gamma / (o.gamma - 1.0));
+    const double p =
+        o.stagnation_pressure * std::pow(t / o.stagnation_temperature, o.gamma / (o.gamma - 1.0));
     const double a = o.inflow_angle * std::acos(-1.0) / 180.0;
     const double u = m0 * std::sqrt(o.gamma * o.gas_constant * t);
     solver.set_uniform({p / (o.gas_constant * t), u * std::cos(a), u * std::sin(a), p});
   }
-  log.info("mesh " + o.mesh_file.string() + ": " + std::to_string(lm.mesh.num_points()) + " nodes, " +
-           std::to_string(lm.mesh.triangles.size()) + " triangles, " + std::to_string(lm.mesh.quads.size()) +
-           " quads; " + o.model + (lm.geometry == Geometry::axisymmetric ? ", axisymmetric" : ", planar"));
+  log.info("mesh " + o.mesh_file.string() + ": " + std::to_string(lm.mesh.num_points()) +
+           " nodes, " + std::to_string(lm.mesh.triangles.size()) + " triangles, " +
+           std::to_string(lm.mesh.quads.size()) + " quads; " + o.model +
+           (lm.geometry == Geometry::axisymmetric ? ", axisymmetric" : ", planar"));
 
   RunResult result;
-  result.report = solver.solve();
+  if (o.first_order_start && settings.order >= 2 && !o.restart_file) {
+    SolverSettings first_settings = settings;
+    first_settings.order = 1;
+    SolveReport first;
+    {
+      FlowSolver first_solver(lm.mesh, lm.geometry, gas, bcs, first_settings);
+      first_solver.set_primitive(solver.primitive());
+      first = first_solver.solve();
+      log.info(std::string("first-order start: ") +
+               (first.converged ? "converged" : "NOT converged") + " in " +
+               std::to_string(first.iterations) + " iterations, residual drop " +
+               num(first.residual_drop) + "; continuing at second order");
+      solver.set_primitive(first_solver.primitive());
+      if (turbulent)
+        solver.set_nu_tilde(first_solver.nu_tilde());
+    }
+    // the second stage continues the first one's residual drop and starts at full inflow pressure
+    solver.set_residual_reference(first.residual_reference);
+    solver.set_inflow_ramp(0);
+    SolveReport second = solver.solve();
+    for (auto& rec : second.history) {
+      rec.iteration += first.iterations;
+      rec.wall_time += first.wall_time;
+    }
+    second.history.insert(second.history.begin(), first.history.begin(), first.history.end());
+    second.iterations += first.iterations;
+    second.linear_iterations += first.linear_iterations;
+    second.backoffs += first.backoffs;
+    second.wall_time += first.wall_time;
+    result.report = std::move(second);
+  } else {
+    result.report = solver.solve();
+  }
   const SolveReport& rep = result.report;
 
   // Integrals. With outflow boundaries: mass flow and gross thrust through them,
@@ -230,7 +274,8 @@ RunResult run(const RunOptions& o, const Logger& log) {
     const BoundaryIntegral bi = solver.boundary_integral(b);
     Vec2 f = bi.force;
     for (const auto& face : solver.dual().boundary_faces) {
-      if (face.curve == b) f = f - o.ambient_pressure * face.normal;
+      if (face.curve == b)
+        f = f - o.ambient_pressure * face.normal;
     }
     return std::pair<double, Vec2>{bi.mass_flow, f};
   };
@@ -242,9 +287,11 @@ RunResult run(const RunOptions& o, const Logger& log) {
       result.thrust_y += scale * f.y;
     }
   } else if (!inflow_curves.empty()) {
-    for (int b : inflow_curves) result.mass_flow -= scale * momentum_minus_ambient(b).first;
+    for (int b : inflow_curves)
+      result.mass_flow -= scale * momentum_minus_ambient(b).first;
     std::vector<int> control_surface = inflow_curves;
-    control_surface.insert(control_surface.end(), nozzle_wall_curves.begin(), nozzle_wall_curves.end());
+    control_surface.insert(control_surface.end(), nozzle_wall_curves.begin(),
+                           nozzle_wall_curves.end());
     for (int b : control_surface) {
       const Vec2 f = momentum_minus_ambient(b).second;
       result.thrust_x -= scale * f.x;
@@ -257,7 +304,8 @@ RunResult run(const RunOptions& o, const Logger& log) {
     const double mach = 1.0;
     const double t = o.stagnation_temperature / (1.0 + 0.5 * (g - 1.0) * mach * mach);
     const double p = o.stagnation_pressure * std::pow(t / o.stagnation_temperature, g / (g - 1.0));
-    const double ideal = p / (o.gas_constant * t) * mach * std::sqrt(g * o.gas_constant * t) * *o.throat_area;
+    const double ideal =
+        p / (o.gas_constant * t) * mach * std::sqrt(g * o.gas_constant * t) * *o.throat_area;
     result.discharge_coefficient = result.mass_flow / ideal;
   }
 
@@ -265,9 +313,11 @@ RunResult run(const RunOptions& o, const Logger& log) {
   // heat-transfer probe changes the state.
   const auto w_solver = solver.primitive();
   std::vector<WallTrace> traces;
-  for (int b : wall_curves) traces.push_back(solver.wall_trace(b));
+  for (int b : wall_curves)
+    traces.push_back(solver.wall_trace(b));
   const std::vector<double> nu_tilde = turbulent ? solver.nu_tilde() : std::vector<double>{};
-  const std::vector<double> eddy_viscosity = turbulent ? solver.eddy_viscosity() : std::vector<double>{};
+  const std::vector<double> eddy_viscosity =
+      turbulent ? solver.eddy_viscosity() : std::vector<double>{};
   // Heat transfer coefficient for tfmb-heat's convection condition: walls made isothermal
   // heat_transfer_dt below the adiabatic wall temperature, restarted from the adiabatic solution,
   // h = q_w / (T_aw - T_w) node by node (the adiabatic wall temperature is the recovery
@@ -278,13 +328,14 @@ RunResult run(const RunOptions& o, const Logger& log) {
     solver.make_walls_isothermal(heat_transfer_dt);
     solver.set_residual_reference(rep.residual_reference);
     const SolveReport probe = solver.solve();
-    log.info("heat-transfer probe (walls " + num(heat_transfer_dt) + " K below adiabatic): " +
-             (probe.converged ? "converged" : "NOT converged") + " in " + std::to_string(probe.iterations) +
-             " iterations");
+    log.info("heat-transfer probe (walls " + num(heat_transfer_dt) +
+             " K below adiabatic): " + (probe.converged ? "converged" : "NOT converged") + " in " +
+             std::to_string(probe.iterations) + " iterations");
     for (std::size_t c = 0; c < wall_curves.size(); ++c) {
       const WallTrace probe_trace = solver.wall_trace(wall_curves[c]);
       std::vector<double> h(probe_trace.heat_flux.size());
-      for (std::size_t k = 0; k < h.size(); ++k) h[k] = probe_trace.heat_flux[k] / heat_transfer_dt;
+      for (std::size_t k = 0; k < h.size(); ++k)
+        h[k] = probe_trace.heat_flux[k] / heat_transfer_dt;
       heat_transfer.push_back(std::move(h));
     }
   }
@@ -300,11 +351,12 @@ RunResult run(const RunOptions& o, const Logger& log) {
     vel(k, 0) = w[1];
     vel(k, 1) = w[2];
     vel(k, 2) = 0.0;
-    if (!(rho[k] > 0.0 && p[k] > 0.0 && std::isfinite(mach[k]) && std::isfinite(vel(k, 0) + vel(k, 1)))) {
+    if (!(rho[k] > 0.0 && p[k] > 0.0 && std::isfinite(mach[k]) &&
+          std::isfinite(vel(k, 0) + vel(k, 1)))) {
       // the solver only keeps physical states; never hand a non-physical field to the next stage
       throw InternalError(o.output.string() + ": node " + std::to_string(k) +
-                          " has a non-physical final state (rho " + num(rho[k]) + ", p " + num(p[k]) +
-                          "); nothing written");
+                          " has a non-physical final state (rho " + num(rho[k]) + ", p " +
+                          num(p[k]) + "); nothing written");
     }
   }
   {
@@ -330,7 +382,8 @@ RunResult run(const RunOptions& o, const Logger& log) {
       const WallTrace& t = traces[c];
       const std::string g = "/walls/" + lm.mesh.boundaries[b].name;
       std::vector<std::int64_t> node(t.node.size());
-      for (std::size_t k = 0; k < node.size(); ++k) node[k] = t.node[k];
+      for (std::size_t k = 0; k < node.size(); ++k)
+        node[k] = t.node[k];
       w.write(g + "/node", node, "1");
       w.write(g + "/s", t.s, "m", "arc length along the wall");
       w.write(g + "/x", t.x, "m");
@@ -340,16 +393,19 @@ RunResult run(const RunOptions& o, const Logger& log) {
       w.write(g + "/wall_shear", t.shear_stress, "Pa", "along the direction of increasing s");
       w.write(g + "/heat_flux", t.heat_flux, "W/m^2", "into the wall");
       if (!heat_transfer.empty()) {
-        w.write(g + "/adiabatic_wall_temperature", t.temperature, "K", "wall temperature of the adiabatic solution");
+        w.write(g + "/adiabatic_wall_temperature", t.temperature, "K",
+                "wall temperature of the adiabatic solution");
         w.write(g + "/heat_transfer_coefficient", heat_transfer[c], "W/(m^2 K)",
-                "q_w / (T_aw - T_w) of an isothermal probe run " + num(heat_transfer_dt) + " K below T_aw");
+                "q_w / (T_aw - T_w) of an isothermal probe run " + num(heat_transfer_dt) +
+                    " K below T_aw");
       }
     }
     w.create_group("/integrals");
     w.set_attr("/integrals", "mass_flow", result.mass_flow);
     w.set_attr("/integrals", "thrust_x", result.thrust_x);
     w.set_attr("/integrals", "thrust_y", result.thrust_y);
-    w.set_attr("/integrals", "thrust_angle", std::atan2(result.thrust_y, result.thrust_x) * 180.0 / std::acos(-1.0));
+    w.set_attr("/integrals", "thrust_angle",
+               std::atan2(result.thrust_y, result.thrust_x) * 180.0 / std::acos(-1.0));
     w.set_attr("/integrals", "discharge_coefficient", result.discharge_coefficient);
     w.create_group("/conditions");
     w.set_attr("/conditions", "stagnation_pressure", o.stagnation_pressure);
@@ -359,13 +415,16 @@ RunResult run(const RunOptions& o, const Logger& log) {
     w.set_attr("/conditions", "gas_constant", o.gas_constant);
     w.create_group("/convergence");
     w.set_attr("/convergence", "converged", static_cast<std::int64_t>(rep.converged ? 1 : 0));
-    std::string criterion = "density residual (RMS of residual/volume) below " + num(settings.residual_drop) +
-                            " of its largest value";
+    std::string criterion = "density residual (RMS of residual/volume) below " +
+                            num(settings.residual_drop) + " of its largest value";
     if (settings.stationary_tolerance > 0.0) {
       criterion += ", or wall pressure (relative to " + num(settings.reference_state[3]) +
-                   " Pa) and wall pressure force changing by less than " + num(settings.stationary_tolerance) +
-                   " per iteration for " + std::to_string(settings.stationary_iterations) + " iterations" +
-                   (rep.converged ? (rep.converged_by_stationarity ? " (met: stationarity)" : " (met: residual)") : "");
+                   " Pa) and wall pressure force changing by less than " +
+                   num(settings.stationary_tolerance) + " per iteration for " +
+                   std::to_string(settings.stationary_iterations) + " iterations" +
+                   (rep.converged ? (rep.converged_by_stationarity ? " (met: stationarity)"
+                                                                   : " (met: residual)")
+                                  : "");
     }
     w.set_attr("/convergence", "criterion", criterion);
     w.set_attr("/convergence", "iterations", static_cast<std::int64_t>(rep.iterations));
@@ -376,36 +435,46 @@ RunResult run(const RunOptions& o, const Logger& log) {
     std::vector<double> history;
     State largest{};
     for (const auto& rec : rep.history) {
-      for (int v = 0; v < 4; ++v) largest[v] = std::max(largest[v], rec.residual[v]);
+      for (int v = 0; v < 4; ++v)
+        largest[v] = std::max(largest[v], rec.residual[v]);
     }
     for (const auto& rec : rep.history) {
-      for (int v = 0; v < 4; ++v) history.push_back(largest[v] > 0.0 ? rec.residual[v] / largest[v] : 0.0);
+      for (int v = 0; v < 4; ++v)
+        history.push_back(largest[v] > 0.0 ? rec.residual[v] / largest[v] : 0.0);
     }
-    w.write_array("/convergence/residual_history", history, {rep.history.size(), 4}, "1",
-                  "per iteration: RMS residual of continuity, x-momentum, y-momentum, energy relative to "
-                  "its largest value in the run");
+    w.write_array(
+        "/convergence/residual_history", history, {rep.history.size(), 4}, "1",
+        "per iteration: RMS residual of continuity, x-momentum, y-momentum, energy relative to "
+        "its largest value in the run");
     formats::Provenance prov;
     prov.command_line = o.command_line;
     std::ostringstream s;
-    s << "model = \"" << o.model << "\"\norder = " << settings.order << "\ncfl_start = " << settings.cfl_start
-      << "\ncfl_max = " << settings.cfl_max << "\nmax_iterations = " << settings.max_iterations
-      << "\nresidual_drop = " << settings.residual_drop << "\nentropy_fix = " << settings.entropy_fix
-      << "\nfarfield_flux = \"" << o.farfield_flux << "\""
-      << "\nlimiter = " << (settings.limiter ? "true" : "false") << "\nvenkat_wang = " << settings.venkat_wang
+    s << "model = \"" << o.model << "\"\norder = " << settings.order
+      << "\ncfl_start = " << settings.cfl_start << "\ncfl_max = " << settings.cfl_max
+      << "\nmax_iterations = " << settings.max_iterations
+      << "\nresidual_drop = " << settings.residual_drop
+      << "\nentropy_fix = " << settings.entropy_fix << "\nfarfield_flux = \"" << o.farfield_flux
+      << "\""
+      << "\nlimiter = " << (settings.limiter ? "true" : "false")
+      << "\nvenkat_wang = " << settings.venkat_wang
       << "\nwall_aligned_aspect_ratio = " << settings.wall_aligned_aspect_ratio
       << "\nmatrix_free = " << (settings.matrix_free ? "true" : "false")
+      << "\nfirst_order_start = " << (o.first_order_start ? "true" : "false")
       << "\nthreads = " << settings.threads << "\n";
     prov.settings = s.str();
     prov.inputs = {o.mesh_file};
-    if (o.restart_file) prov.inputs.push_back(*o.restart_file);
+    if (o.restart_file)
+      prov.inputs.push_back(*o.restart_file);
     formats::write_provenance(w, prov);
     w.commit();
   }
   formats::write_xdmf_sidecar(o.output);
-  log.summary("wrote " + o.output.string() + ": " + (rep.converged ? "converged" : "NOT converged") + " in " +
-              std::to_string(rep.iterations) + " iterations (" + std::to_string(rep.linear_iterations) +
-              " linear), residual drop " + num(rep.residual_drop) + ", mass flow " + num(result.mass_flow) +
-              " kg/s, thrust " + num(result.thrust_x) + " N, " + num(rep.wall_time) + " s");
+  log.summary("wrote " + o.output.string() + ": " +
+              (rep.converged ? "converged" : "NOT converged") + " in " +
+              std::to_string(rep.iterations) + " iterations (" +
+              std::to_string(rep.linear_iterations) + " linear), residual drop " +
+              num(rep.residual_drop) + ", mass flow " + num(result.mass_flow) + " kg/s, thrust " +
+              num(result.thrust_x) + " N, " + num(rep.wall_time) + " s");
   return result;
 }
 

@@ -15,29 +15,34 @@ struct RunOptions {
   std::filesystem::path mesh_file;                    // tfmb/flowmesh
   std::optional<std::filesystem::path> restart_file;  // tfmb/flow of the same topology
   std::filesystem::path output;                       // tfmb/flow
-  double stagnation_pressure = 0.0;     // inflow total pressure [Pa]
-  double stagnation_temperature = 0.0;  // inflow total temperature [K]
-  double ambient_pressure = 101325.0;   // outflow and far-field static pressure [Pa]
-  double ambient_temperature = 288.15;  // far-field static temperature [K]
-  double freestream_mach = 0.0;         // far-field Mach number along +x
-  double inflow_angle = 0.0;            // inflow direction from +x [deg]
+  double stagnation_pressure = 0.0;                   // inflow total pressure [Pa]
+  double stagnation_temperature = 0.0;                // inflow total temperature [K]
+  double ambient_pressure = 101325.0;                 // outflow and far-field static pressure [Pa]
+  double ambient_temperature = 288.15;                // far-field static temperature [K]
+  double freestream_mach = 0.0;                       // far-field Mach number along +x
+  double inflow_angle = 0.0;                          // inflow direction from +x [deg]
   double gamma = 1.4;
-  double gas_constant = 287.05;         // [J/(kg K)]
-  std::string model = "euler";          // euler | laminar
-  std::optional<double> wall_temperature;  // [K] isothermal no-slip walls (laminar); adiabatic if unset
-  std::optional<double> throat_area;    // [m] per unit depth (planar) or [m^2] (axisymmetric), for Cd
-  double heat_transfer_dt = 20.0;       // [K] probe below T_aw for the heat transfer coefficient (0: none)
-  std::string farfield_flux = "roe";    // roe | riemann (BoundaryCondition::riemann_invariants)
-  int inflow_ramp = -1;                 // iterations of the total-pressure ramp (-1: automatic)
-  bool renumber = true;                 // reverse Cuthill-McKee node order inside the solver
+  double gas_constant = 287.05;  // [J/(kg K)]
+  std::string model = "euler";   // euler | laminar
+  std::optional<double>
+      wall_temperature;               // [K] isothermal no-slip walls (laminar); adiabatic if unset
+  std::optional<double> throat_area;  // [m] per unit depth (planar) or [m^2] (axisymmetric), for Cd
+  double heat_transfer_dt =
+      20.0;  // [K] probe below T_aw for the heat transfer coefficient (0: none)
+  std::string farfield_flux = "roe";  // roe | riemann (BoundaryCondition::riemann_invariants)
+  int inflow_ramp = -1;               // iterations of the total-pressure ramp (-1: automatic)
+  bool renumber = true;               // reverse Cuthill-McKee node order inside the solver
+  // Second order without a restart file: converge first order first (same settings, its own
+  // iteration limit), then continue at second order from that state, as a restart would.
+  bool first_order_start = false;
   SolverSettings settings;
   std::string command_line;
 };
 
 struct RunResult {
   SolveReport report;
-  double mass_flow = 0.0;       // through the outflow boundaries (else the inflow) [kg/(s m)] or [kg/s]
-  double thrust_x = 0.0;        // [N/m] or [N]
+  double mass_flow = 0.0;  // through the outflow boundaries (else the inflow) [kg/(s m)] or [kg/s]
+  double thrust_x = 0.0;   // [N/m] or [N]
   double thrust_y = 0.0;
   double discharge_coefficient = 0.0;
 };

@@ -171,6 +171,7 @@ class FlowSolver {
   // h = q_w / (T_aw - T_w) (see run.cpp).
   void make_walls_isothermal(double below);
   void set_residual_reference(double reference) { settings_.residual_reference = reference; }
+  void set_inflow_ramp(int iterations) { settings_.inflow_ramp_iterations = iterations; }
 
   // Residual R(U) (flux balance, positive = net outflow) for the current state; per node.
   std::vector<State> residual();
