@@ -39,23 +39,20 @@ StencilGeometry wall_aligned_stencil(const Mesh& mesh, const DualMesh& dual,
   if (mapped_nodes)
     *mapped_nodes = 0;
   std::vector<std::array<Vec2, 2>> walls;
-  std::vector<int> wall_curve;
   for (std::size_t c = 0; c < mesh.boundaries.size(); ++c) {
     if (!wall_curves[c])
       continue;
-    for (const auto& e : mesh.boundaries[c].edges) {
+    for (const auto& e : mesh.boundaries[c].edges)
       walls.push_back({dual.coords[e[0]], dual.coords[e[1]]});
-      wall_curve.push_back(static_cast<int>(c));
-    }
   }
   if (walls.empty())
     return g;
   const auto nearest = nearest_wall(dual.coords, walls);
   const int n = dual.num_nodes;
   // unit wall normal into the fluid at each node: from the foot point, or on the wall itself
-  // against the outward normals of the node's wall faces
+  // against the outward normals of the node's wall faces; has_frame false at sharp corners
   std::vector<Vec2> wall_normal(n);
-  std::vector<int> node_curve(n, -1);
+  std::vector<char> has_frame(n, 1);
   std::vector<Vec2> face_normal_sum(n);
   std::vector<double> face_normal_length(n, 0.0);
   for (const auto& face : dual.boundary_faces) {
@@ -69,7 +66,6 @@ StencilGeometry wall_aligned_stencil(const Mesh& mesh, const DualMesh& dual,
     scale = std::max({scale, std::abs(p.x), std::abs(p.y)});
   for (int i = 0; i < n; ++i) {
     const auto& nw = nearest[i];
-    node_curve[i] = wall_curve[nw.segment];
     if (nw.distance > 1e-12 * scale) {
       wall_normal[i] = (1.0 / nw.distance) * (dual.coords[i] - nw.foot);
     } else {
@@ -78,13 +74,13 @@ StencilGeometry wall_aligned_stencil(const Mesh& mesh, const DualMesh& dual,
       // a sharp corner (a lip, a step) has no wall frame: walls turning by more than 45 degrees
       // give a normal sum shorter than cos(22.5 deg) of the face lengths
       if (!(length > kMinCornerCosine * face_normal_length[i]))
-        node_curve[i] = -1;
+        has_frame[i] = 0;
     }
   }
   const auto& ne = dual.node_edges;
   std::vector<char> mapped(n, 0);
   for (int i = 0; i < n; ++i) {
-    if (node_curve[i] < 0)
+    if (!has_frame[i])
       continue;
     double shortest = std::numeric_limits<double>::infinity(), longest = 0.0;
     for (int k = ne.offsets[i]; k < ne.offsets[i + 1]; ++k) {
@@ -102,7 +98,7 @@ StencilGeometry wall_aligned_stencil(const Mesh& mesh, const DualMesh& dual,
     for (int k = ne.offsets[i]; k < ne.offsets[i + 1]; ++k) {
       const int j = ne.neighbour[k];
       // a neighbour facing another wall (across a concave corner) keeps its Cartesian vector
-      if (node_curve[j] < 0 || dot(wall_normal[j], normal) < kMinNormalCosine)
+      if (!has_frame[j] || dot(wall_normal[j], normal) < kMinNormalCosine)
         continue;
       const Vec2 d = g.to_neighbour[k];
       const double dn = nearest[j].distance - nearest[i].distance;  // |dn| <= |d|: 1-Lipschitz
