@@ -1,6 +1,7 @@
 # nasa-2dcd: flow validation against NASA TP-1704 (README.md). Spalart-Allmaras with first-order
 # convection (second order, --order 2 --first-order-start --matrix-free true, converges at NPR
-# 8.91 but not yet at the separated NPR 2.412: README.md), converged when the wall pressures and the wall force are stationary
+# 8.91; at the separated NPR 2.412 on SMOKE only so far: README.md), converged when the wall
+# pressures and the wall force are stationary
 # to 1e-6 (relative to p0) per iteration, or the density residual fell 8 orders. No heat-transfer
 # probe: the validation compares wall pressures only.
 ANALYSIS = flow
