@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "tfmb/common/geometry.hpp"
+
 namespace tfmb::flow {
 
 std::vector<NearestWall> nearest_wall(const std::vector<Vec2>& points,
@@ -33,13 +35,12 @@ std::vector<NearestWall> nearest_wall(const std::vector<Vec2>& points,
       if (dx * dx + dy * dy >= best.distance * best.distance)
         continue;
       const auto& [start, end] = walls[k];
-      const Vec2 along = end - start;
-      const double length2 = dot(along, along);
-      const double t = length2 > 0.0 ? std::clamp(dot(p - start, along) / length2, 0.0, 1.0) : 0.0;
-      const Vec2 foot = start + t * along;
-      const double d = norm(p - foot);
+      double t = 0.0;
+      const double d = geometry::distance_to_segment(geometry::Point(p.x, p.y),
+                                                     geometry::Point(start.x, start.y),
+                                                     geometry::Point(end.x, end.y), &t);
       if (d < best.distance)
-        best = {d, foot, static_cast<int>(k)};
+        best = {d, start + t * (end - start), static_cast<int>(k)};
     }
     nearest[i] = best;
   }
