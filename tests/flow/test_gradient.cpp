@@ -60,6 +60,17 @@ Mesh curved_wall_layer(double curvature) {
   };
   return structured_mesh(spec);
 }
+
+// The wall-aligned stencil of curved_wall_layer's mesh ("wall" the only wall); checks that the
+// wall layer's stretched nodes were mapped.
+StencilGeometry aligned_stencil_of_wall_layer(const Mesh& mesh, const DualMesh& dual) {
+  std::vector<char> wall_curves(mesh.boundaries.size(), 0);
+  wall_curves[mesh.boundary_index("wall")] = 1;
+  int mapped = 0;
+  StencilGeometry aligned = wall_aligned_stencil(mesh, dual, wall_curves, 4.0, &mapped);
+  EXPECT_GT(mapped, 100);
+  return aligned;
+}
 }  // namespace
 
 TEST(Gradient, WallAlignedStencilReconstructsAWallLayerProfileAlongACurvedWall) {
@@ -68,12 +79,8 @@ TEST(Gradient, WallAlignedStencilReconstructsAWallLayerProfileAlongACurvedWall) 
   // value. Cartesian vectors pick up the wall-normal gradient times the curvature offset.
   const Mesh mesh = curved_wall_layer(1.0);
   const DualMesh dual = build_dual(mesh, Geometry::planar);
-  std::vector<char> wall_curves(mesh.boundaries.size(), 0);
-  wall_curves[mesh.boundary_index("wall")] = 1;
-  int mapped = 0;
-  const StencilGeometry aligned = wall_aligned_stencil(mesh, dual, wall_curves, 4.0, &mapped);
   const StencilGeometry cartesian = cartesian_stencil(dual);
-  EXPECT_GT(mapped, 100);
+  const StencilGeometry aligned = aligned_stencil_of_wall_layer(mesh, dual);
   std::vector<State> q(dual.num_nodes);
   for (int i = 0; i < dual.num_nodes; ++i) {
     const double n = norm(dual.coords[i] - Vec2{0.0, 1.0}) - 1.0;
@@ -106,12 +113,8 @@ TEST(Gradient, WallAlignedStencilReconstructsAWallLayerProfileAlongACurvedWall) 
 TEST(Gradient, WallAlignedStencilIsCartesianOnAStraightWall) {
   const Mesh mesh = curved_wall_layer(0.0);
   const DualMesh dual = build_dual(mesh, Geometry::planar);
-  std::vector<char> wall_curves(mesh.boundaries.size(), 0);
-  wall_curves[mesh.boundary_index("wall")] = 1;
-  int mapped = 0;
-  const StencilGeometry aligned = wall_aligned_stencil(mesh, dual, wall_curves, 4.0, &mapped);
   const StencilGeometry cartesian = cartesian_stencil(dual);
-  EXPECT_GT(mapped, 100);
+  const StencilGeometry aligned = aligned_stencil_of_wall_layer(mesh, dual);
   for (std::size_t k = 0; k < aligned.to_neighbour.size(); ++k) {
     ASSERT_NEAR(aligned.to_neighbour[k].x, cartesian.to_neighbour[k].x, 1e-12);
     ASSERT_NEAR(aligned.to_neighbour[k].y, cartesian.to_neighbour[k].y, 1e-12);
