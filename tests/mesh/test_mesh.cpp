@@ -287,3 +287,41 @@ TEST(Geometry, NasaB1ThroatAndExitHeights) {
   EXPECT_NEAR(exit_height, 0.0246, 1e-7);
   EXPECT_NEAR(exit_height / throat, 1.796, 1e-3);
 }
+
+TEST(FlowMesh, CellsPerCircleRefinesTheThroatArcOnly) {
+  // B1's throat is a circular arc of radius r_c = 6.8 mm (refdata geometry) between straight
+  // flaps. With mesh.cells_per_circle = N the wall spacing on the arc must be at most
+  // 2 pi r_c / N (plus the chord sag of the 8-segment arc in b1.csv), while the straight flap far
+  // from the throat keeps mesh.wall_size (1 mm).
+  const int cells = 120;
+  const double r_c = 0.0068, limit = 2.0 * M_PI * r_c / cells;
+  mesh::FlowMeshOptions options;
+  options.scale = 1.0;
+  auto wall_x = [&](const std::vector<std::string>& overrides) {
+    const auto model = load_case("nasa-2dcd", overrides);
+    mesh::FlowMeshReport report;
+    const auto m = mesh::build_flow_mesh(model, options, report, quiet());
+    const auto& b = m.boundaries.at("upper_divergent_inner");
+    std::set<double> xs;
+    for (Eigen::Index e = 0; e < b.edges.rows(); ++e) {
+      for (int k = 0; k < 2; ++k) xs.insert(m.points(b.edges(e, k), 0));
+    }
+    return std::vector<double>(xs.begin(), xs.end());
+  };
+  const auto plain = wall_x({});
+  const auto refined = wall_x({"mesh.cells_per_circle=" + std::to_string(cells)});
+  // Divergent arc: 0 <= x <= r_c sin(10.85 deg) = 1.28 mm (intervals wholly on it).
+  const double arc_end = r_c * std::sin(10.85 * M_PI / 180.0);
+  double widest_on_arc = 0.0, widest_plain = 0.0;
+  for (std::size_t i = 1; i < refined.size() && refined[i] <= arc_end; ++i)
+    widest_on_arc = std::max(widest_on_arc, refined[i] - refined[i - 1]);
+  for (std::size_t i = 1; i < plain.size() && plain[i - 1] < arc_end; ++i)
+    widest_plain = std::max(widest_plain, plain[i] - plain[i - 1]);
+  EXPECT_LT(widest_on_arc, 1.05 * limit);
+  EXPECT_GT(widest_plain, 2.0 * limit);  // the option is what refined it
+  // Downstream of the arc the spacing grades back to wall_size (1 mm) at rate 0.25.
+  const double last = refined[refined.size() - 2] - refined[refined.size() - 3];
+  EXPECT_NEAR(last, plain[plain.size() - 2] - plain[plain.size() - 3], 0.05e-3);
+  EXPECT_GT(refined.size(), plain.size());
+  EXPECT_LT(refined.size(), plain.size() + 20);
+}

@@ -136,6 +136,9 @@ struct MeshControls {
   double scale = 1.0;              // multiplies every size (coarse test meshes: > 1)
   int cells_along = 0, cells_across = 0, cells_upstream = 0;  // structured domains
   double leading_edge_spacing = 0.0;  // [m] flatplate
+  // Nozzle walls: at most 2 pi R / cells_per_circle along a wall of radius of curvature R, so
+  // a tight throat arc is resolved like a circle of that many cells (0: off; model 2.2).
+  int cells_per_circle = 0;
   int solid_cells_per_element = 4, solid_layers = 4;
 };
 

@@ -65,13 +65,44 @@ std::vector<Part> split_at_corners(const std::vector<const Polyline*>& lines, co
   return parts;
 }
 
-// Samples a part with spacing s(x) = min(size, a + g x, b + g (L - x)): the spacing grows
-// linearly (rate g, about a geometric ratio 1 + g) away from short neighbours at either end.
-Polyline sample_part(const Part& part, double a, double b, double g) {
+// Spacing wanted around the interior vertices of a part from the wall's curvature: 2 pi R / N
+// (times the mesh scale), with R = (length around the vertex) / (turn angle at the vertex), the
+// radius of the circle through the polyline there. It holds from half-way to the previous vertex
+// to half-way to the next; the first and last interior vertices hold it out to the part's ends
+// (a part ends at a corner or a joint, where the curve's own curvature is not measured). Returns
+// (from, to, spacing) in arc length; empty when cells_per_circle is 0.
+std::vector<std::array<double, 3>> curvature_spacing(const Polyline& line, int cells_per_circle, double scale) {
+  std::vector<std::array<double, 3>> out;
+  if (cells_per_circle <= 0 || line.size() < 3) return out;
+  const double total = input::length(line);
+  double s = 0.0;
+  for (std::size_t i = 1; i + 1 < line.size(); ++i) {
+    const Point back = line[i] - line[i - 1], ahead = line[i + 1] - line[i];
+    s += back.norm();
+    const double turn = std::atan2(std::abs(back.x() * ahead.y() - back.y() * ahead.x()), back.dot(ahead));
+    if (turn < 1e-9) continue;
+    const double radius = 0.5 * (back.norm() + ahead.norm()) / turn;
+    const double from = i == 1 ? 0.0 : s - 0.5 * back.norm();
+    const double to = i + 2 == line.size() ? total : s + 0.5 * ahead.norm();
+    out.push_back({from, to, scale * 2.0 * M_PI * radius / cells_per_circle});
+  }
+  return out;
+}
+
+// Samples a part with spacing s(x) = min(size, a + g x, b + g (L - x), c_j + g d_j(x)): the
+// spacing grows linearly (rate g, about a geometric ratio 1 + g) away from short neighbours at
+// either end and from the curvature-limited spacings c_j (d_j: distance to the stretch where c_j
+// holds).
+Polyline sample_part(const Part& part, double a, double b, double g, int cells_per_circle, double scale) {
   const double total = input::length(part.line);
   const int samples = 2000;
   std::vector<double> cumulative(samples + 1, 0.0);
-  auto spacing = [&](double x) { return std::min({part.size, a + g * x, b + g * (total - x)}); };
+  const auto curved = curvature_spacing(part.line, cells_per_circle, scale);
+  auto spacing = [&](double x) {
+    double h = std::min({part.size, a + g * x, b + g * (total - x)});
+    for (const auto& [from, to, c] : curved) h = std::min(h, c + g * std::max({0.0, from - x, x - to}));
+    return h;
+  };
   for (int i = 1; i <= samples; ++i) {
     const double x0 = total * (i - 1) / samples, x1 = total * i / samples;
     cumulative[static_cast<std::size_t>(i)] =
@@ -161,7 +192,7 @@ Mesh build_flow_mesh(const Model& model, const FlowMeshOptions& options, FlowMes
     for (std::size_t k = 0; k < parts.size(); ++k) {
       const double a = k > 0 ? std::min(parts[k].size, parts[k - 1].size) : parts[k].size;
       const double b = k + 1 < parts.size() ? std::min(parts[k].size, parts[k + 1].size) : parts[k].size;
-      const Polyline d = sample_part(parts[k], a, b, 0.25);
+      const Polyline d = sample_part(parts[k], a, b, 0.25, model.mesh.cells_per_circle, scale);
       if (parts[k].piece != current_piece) {
         current_piece = parts[k].piece;
         run.piece_start.push_back(run.nodes.empty() ? 0 : run.nodes.size() - 1);
