@@ -11,6 +11,13 @@
 // 0.375 <= x <= 0.875 in but is 7.6 % high at x = 0.25 in (transonic region) and up to 17 %
 // low at x = 2.5 in, where the measured pressure levels off as a growing boundary layer would
 // make it. The test runs with --gtest_also_run_disabled_tests and prints the comparison.
+// Measured (second order, 141 x 31): +4.0 % at 0.125 in, +7.8 % at 0.25 in, -1.4..+1.9 % on
+// 0.375-1.0 in, +2.1..+6.2 % on 1.125-2.0 in, -5.2..-16.9 % on 2.125-2.5 in. On 0.125-2.0 in the
+// computed curve passes within 0.083 in (2.1 mm) along the wall of every measured point (within
+// 0.035 in up to 1.0 in), the scale of reading a figure; the points scatter by that much about
+// any smooth curve (the measured drop per 0.125 in alternates 0.015, 0.008, 0.011, 0.007 on
+// 1.0-1.5 in). The axisymmetric discretisation itself is verified against an exact solution in
+// test_source_flow_axi.cpp (conical source flow, wall p within 0.2 %, order 1.9).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -93,8 +100,20 @@ Comparison compare_wall_pressure(const WallTrace& trace, double p0,
     const double err = std::abs(p_wall - p_ref) / p_ref;
     if (x_in <= x_to + 1e-9 && err > c.worst)
       c = {err, x_in};
-    std::printf("  x %.3f in  p/pt %.4f  experiment %.3f  (%+.1f %%)\n", x_in, p_wall, p_ref,
-                100.0 * (p_wall - p_ref) / p_ref);
+    // The data were read off a figure (refdata header): also print how far along the wall the
+    // computed curve reaches the measured value (nearest crossing), where p falls steeply a
+    // fairer measure of the disagreement than the difference at equal x.
+    double shift = 1e300;
+    for (std::size_t j = 1; j < trace.x.size(); ++j) {
+      const double a = trace.pressure[j - 1] / p0 - p_ref, b = trace.pressure[j] / p0 - p_ref;
+      if (a * b > 0.0 || a == b)
+        continue;
+      const double x_cross = trace.x[j - 1] + a / (a - b) * (trace.x[j] - trace.x[j - 1]);
+      if (std::abs(x_cross - x) < std::abs(shift))
+        shift = x_cross - x;
+    }
+    std::printf("  x %.3f in  p/pt %.4f  experiment %.3f  (%+.1f %%; computed reaches it %+.3f in away)\n",
+                x_in, p_wall, p_ref, 100.0 * (p_wall - p_ref) / p_ref, shift / kInch);
   }
   return c;
 }
