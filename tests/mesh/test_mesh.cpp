@@ -308,7 +308,7 @@ TEST(FlowMesh, CellsPerCircleRefinesTheThroatArcOnly) {
     }
     return std::vector<double>(xs.begin(), xs.end());
   };
-  const auto plain = wall_x({});
+  const auto plain = wall_x({"mesh.cells_per_circle=0"});
   const auto refined = wall_x({"mesh.cells_per_circle=" + std::to_string(cells)});
   // Divergent arc: 0 <= x <= r_c sin(10.85 deg) = 1.28 mm (intervals wholly on it).
   const double arc_end = r_c * std::sin(10.85 * M_PI / 180.0);
