@@ -325,3 +325,24 @@ TEST(FlowMesh, CellsPerCircleRefinesTheThroatArcOnly) {
   EXPECT_GT(refined.size(), plain.size());
   EXPECT_LT(refined.size(), plain.size() + 20);
 }
+
+TEST(FlowMesh, LayersStopBeforeTheyFoldOnAConcaveWall) {
+  // The outer face of B1's flaps is the 6.8 mm throat arc offset 5 mm towards its centre: a
+  // concave wall of 1.8 mm radius for the external flow. Resolved by cells_per_circle on the
+  // coarse (scale 4) mesh at NPR 2.412 (thicker first layer), 30 layers would be 1.9 mm thick and
+  // cross there; the stack must stop below half the crossing height and the mesh stay valid.
+  const auto model = load_case("nasa-2dcd", {"flow.nozzle_pressure_ratio=2.412"});
+  mesh::FlowMeshReport report;
+  mesh::FlowMeshOptions options;
+  options.scale = 4.0;
+  const auto m = mesh::build_flow_mesh(model, options, report, quiet());
+  EXPECT_GT(report.boundary_layers, 10);
+  EXPECT_LT(report.boundary_layers, model.mesh.max_layers);
+  EXPECT_GT(report.quality.min_angle, 10.0);
+  for (Eigen::Index q = 0; q < m.quads.rows(); ++q) {
+    const Eigen::Vector2d a = m.points.row(m.quads(q, 0)).head<2>(), b = m.points.row(m.quads(q, 1)).head<2>(),
+                          c = m.points.row(m.quads(q, 2)).head<2>(), d = m.points.row(m.quads(q, 3)).head<2>();
+    const double area = 0.5 * ((c - a).x() * (d - b).y() - (c - a).y() * (d - b).x());
+    ASSERT_GT(area, 0.0) << "quad " << q;
+  }
+}

@@ -231,6 +231,30 @@ Mesh build_flow_mesh(const Model& model, const FlowMeshOptions& options, FlowMes
     if (!is_wall(i)) clearance = std::min(clearance, 2.0 * input::length(pieces[i].points));
   }
   while (layers > 0 && thickness(layers) > 0.25 * clearance) --layers;
+  // Where a wall is concave on the flow side the layer directions converge and meet about one
+  // radius of curvature off the wall (a flap's outer face offset from a tight throat arc, once
+  // cells_per_circle resolves it): keep the stack below half the height at which the layer
+  // directions of two neighbouring wall nodes cross, so the strips' top edges keep at least half
+  // their wall edge's length and direction.
+  const int layers_wanted = layers;
+  for (const Run& run : runs) {
+    for (std::size_t i = 0; i + 1 < run.nodes.size(); ++i) {
+      const Point wall_edge = run.nodes[i + 1] - run.nodes[i];
+      const Point closing = run.normals[i + 1] - run.normals[i];  // top edge = wall_edge + t closing
+      const double rate = closing.dot(wall_edge);
+      if (rate >= 0.0) continue;  // the layers fan out here
+      const double crossing = -wall_edge.squaredNorm() / rate;
+      while (layers > 0 && thickness(layers) > 0.5 * crossing) --layers;
+    }
+  }
+  if (h1 > 0.0 && model.mesh.max_layers > 0 && layers == 0) {
+    throw BadInput("wall layers fold even one layer high where a wall is concave: reduce the first layer height, or "
+                   "refine mesh.wall_size");
+  }
+  if (layers < layers_wanted) {
+    log.info("wall layers limited to " + std::to_string(layers) + " of " + std::to_string(layers_wanted) +
+             " (" + num(thickness(layers)) + " m thick): more would fold where a wall is concave");
+  }
   report.boundary_layers = layers;
   report.first_layer_height = layers > 0 ? h1 : 0.0;
   std::vector<double> heights(static_cast<std::size_t>(layers) + 1, 0.0);
