@@ -122,6 +122,10 @@ int main(int argc, char** argv) {
   app.add_option("--linear-tolerance", o.settings.linear_tolerance,
                  "[-] relative GMRES tolerance per nonlinear iteration")
       ->capture_default_str();
+  app.add_option("--matrix-free-linear-tolerance", o.settings.matrix_free_linear_tolerance,
+                 "[-] relative GMRES tolerance of the matrix-free (--matrix-free true) second-order steps")
+      ->check(CLI::Range(1e-6, 0.5))
+      ->capture_default_str();
   app.add_option("--gmres-max-iterations", o.settings.gmres_max_iterations,
                  "GMRES iteration limit per nonlinear iteration")
       ->capture_default_str();

@@ -980,7 +980,7 @@ SolveReport FlowSolver::solve() {
     if (settings_.order >= 2 && settings_.matrix_free) {
       // no restart: restarted GMRES(20) stagnated outright (relative residual 1.0 after 80
       // iterations) on nasa-2dcd at CFL 1e4 where the full basis converged in 137-183
-      lin = gmres(matrix_free_operator(diag_scale), ilu_, rhs, du, settings_.linear_tolerance,
+      lin = gmres(matrix_free_operator(diag_scale), ilu_, rhs, du, settings_.matrix_free_linear_tolerance,
                   std::max(settings_.gmres_restart, settings_.gmres_max_iterations),
                   settings_.gmres_max_iterations, gmres_workspace_);
       compute_residual(false);  // back to the state's own residual, gradients and viscosities
