@@ -298,6 +298,10 @@ Mesh build_flow_mesh(const Model& model, const FlowMeshOptions& options, FlowMes
   gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 1);
   gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 1);
   gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
+  // On an error gmsh stops meshing and records it (read below) instead of throwing: its throw
+  // from inside its own OpenMP region could not be caught and aborted the tool (seen on a boundary
+  // loop whose wall-layer tops crossed).
+  gmsh::option::setNumber("General.AbortOnError", 1);
   // The loop as gmsh vertices: strip tops (lines between them fixed to one segment) and the
   // vertices of the non-wall pieces. The line leaving a vertex belongs to `line_piece`.
   struct Vertex {
@@ -375,10 +379,24 @@ Mesh build_flow_mesh(const Model& model, const FlowMeshOptions& options, FlowMes
   const int loop = gmsh::model::geo::addCurveLoop(loop_curves);
   const int surface = gmsh::model::geo::addPlaneSurface({loop});
   gmsh::model::geo::synchronize();
+  // The messages of this generate() only (the last-error slot would outlive a session).
+  std::string gmsh_error;
+  gmsh::option::setNumber("General.Verbosity", 1);  // errors only, for the logger
+  gmsh::logger::start();
   try {
     gmsh::model::mesh::generate(2);
   } catch (...) {
-    throw BadInput("gmsh failed to mesh the flow domain (check the domain outline and mesh sizes)");
+    gmsh_error = "exception";
+  }
+  std::vector<std::string> gmsh_log;
+  gmsh::logger::get(gmsh_log);
+  gmsh::logger::stop();
+  for (const auto& line : gmsh_log) {
+    if (gmsh_error.empty() && line.rfind("Error: ", 0) == 0) gmsh_error = line.substr(7);
+  }
+  if (!gmsh_error.empty()) {
+    throw BadInput("gmsh failed to mesh the flow domain (" + gmsh_error +
+                   "): check the domain outline, the mesh sizes and the wall layers");
   }
   // Nodes.
   std::map<std::size_t, std::int64_t> gmsh_node;
