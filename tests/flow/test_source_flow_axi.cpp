@@ -27,7 +27,8 @@ constexpr double kConeDeg = 15.0;
 // A/A* of isentropic flow at Mach m (Anderson, eq. 5.20).
 double area_ratio(double m) {
   const double g = kGas.gamma;
-  return std::pow(2.0 / (g + 1.0) * (1.0 + 0.5 * (g - 1.0) * m * m), 0.5 * (g + 1.0) / (g - 1.0)) / m;
+  return std::pow(2.0 / (g + 1.0) * (1.0 + 0.5 * (g - 1.0) * m * m), 0.5 * (g + 1.0) / (g - 1.0)) /
+         m;
 }
 
 // Supersonic root of area_ratio(m) = a by bisection (area_ratio grows with m above 1).
@@ -70,7 +71,8 @@ Errors solve(int ni, int nj) {
   spec.split = [ni](int i, int) { return 2 * i >= ni - 1; };  // quads, then triangles
   const Mesh mesh = structured_mesh(spec);
   std::vector<State> w_exact(mesh.points.size());
-  for (std::size_t k = 0; k < w_exact.size(); ++k) w_exact[k] = exact(mesh.points[k]);
+  for (std::size_t k = 0; k < w_exact.size(); ++k)
+    w_exact[k] = exact(mesh.points[k]);
   BoundaryCondition axis, wall, far;
   axis.kind = BcKind::symmetry;
   wall.kind = BcKind::slip_wall;
@@ -82,7 +84,8 @@ Errors solve(int ni, int nj) {
   s.max_iterations = 200;
   s.residual_drop = 1e-10;
   s.cfl_start = 10.0;
-  FlowSolver solver(mesh, Geometry::axisymmetric, kGas, {axis, far, wall, far}, s);  // bottom, right, top, left
+  FlowSolver solver(mesh, Geometry::axisymmetric, kGas, {axis, far, wall, far},
+                    s);  // bottom, right, top, left
   // Start from a uniform state (the inner far-field state) so the test sees the solver build the
   // radial expansion itself.
   solver.set_uniform(w_exact[0]);
@@ -101,7 +104,8 @@ Errors solve(int ni, int nj) {
   const WallTrace wall_trace = solver.wall_trace(2);
   for (std::size_t k = 0; k < wall_trace.x.size(); ++k) {
     const double p_exact = exact({wall_trace.x[k], wall_trace.y[k]})[3];
-    e.wall_pressure_max = std::max(e.wall_pressure_max, std::abs(wall_trace.pressure[k] - p_exact) / p_exact);
+    e.wall_pressure_max =
+        std::max(e.wall_pressure_max, std::abs(wall_trace.pressure[k] - p_exact) / p_exact);
   }
   return e;
 }
@@ -112,8 +116,11 @@ TEST(ConicalSourceFlow, AxisymmetricSecondOrderConvergence) {
   const Errors e1 = solve(17, 9), e2 = solve(33, 17), e3 = solve(65, 33);
   const double p12 = std::log2(e1.density_l2 / e2.density_l2);
   const double p23 = std::log2(e2.density_l2 / e3.density_l2);
-  std::printf("conical source flow L2(rho error): %.3e %.3e %.3e, observed order %.2f %.2f (iterations %d %d %d)\n",
-              e1.density_l2, e2.density_l2, e3.density_l2, p12, p23, e1.iterations, e2.iterations, e3.iterations);
+  std::printf(
+      "conical source flow L2(rho error): %.3e %.3e %.3e, observed order %.2f %.2f (iterations %d "
+      "%d %d)\n",
+      e1.density_l2, e2.density_l2, e3.density_l2, p12, p23, e1.iterations, e2.iterations,
+      e3.iterations);
   std::printf("  largest wall p error: %.3f %% %.3f %% %.3f %%\n", 100.0 * e1.wall_pressure_max,
               100.0 * e2.wall_pressure_max, 100.0 * e3.wall_pressure_max);
   EXPECT_GT(p23, 1.8);
