@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "exact_solution_run.hpp"
 #include "mesh_generate.hpp"
 #include "solver.hpp"
 
@@ -51,26 +52,13 @@ double density_error(int ni, int nj, int* iterations, bool riemann_wall = true) 
   wall.riemann_wall = riemann_wall;
   far.kind = BcKind::farfield;
   far.node_freestream = w_exact;
-  SolverSettings s;
-  s.order = 2;
-  s.limiter = false;
-  s.max_iterations = 200;
-  s.residual_drop = 1e-10;
-  s.cfl_start = 10.0;
-  FlowSolver solver(mesh, Geometry::planar, kGas, {wall, far, wall, far}, s);  // bottom, right, top, left
+  FlowSolver solver(mesh, Geometry::planar, kGas, {wall, far, wall, far},
+                    exact_solution_run::unlimited_second_order());  // bottom, right, top, left
   solver.set_primitive(w_exact);
   const SolveReport r = solver.solve();
   EXPECT_TRUE(r.converged) << ni << "x" << nj;
   *iterations = r.iterations;
-  const auto w = solver.primitive();
-  double err = 0.0, area = 0.0;
-  const auto node_area = solver.node_area();
-  for (std::size_t k = 0; k < w.size(); ++k) {
-    const double a = node_area[k];
-    err += a * (w[k][0] - w_exact[k][0]) * (w[k][0] - w_exact[k][0]);
-    area += a;
-  }
-  return std::sqrt(err / area);
+  return exact_solution_run::density_l2_error(solver, w_exact);
 }
 
 }  // namespace
