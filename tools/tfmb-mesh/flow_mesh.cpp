@@ -247,7 +247,7 @@ Mesh build_flow_mesh(const Model& model, const FlowMeshOptions& options, FlowMes
       while (layers > 0 && thickness(layers) > 0.5 * crossing) --layers;
     }
   }
-  if (h1 > 0.0 && model.mesh.max_layers > 0 && layers == 0) {
+  if (layers_wanted > 0 && layers == 0) {
     throw BadInput("wall layers fold even one layer high where a wall is concave: reduce the first layer height, or "
                    "refine mesh.wall_size");
   }
