@@ -1,39 +1,80 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
+#include <stdexcept>
 
 #include "linear_solver.hpp"
 
 using namespace tfmb::flow;
 
-TEST(LinearSolver, GmresWithBlockIluSolvesAConvectionLikeSystem) {
-  // 1D chain of 200 nodes with a nonsymmetric, diagonally dominant 4x4 block structure
+class LinearSolverBlocks : public ::testing::TestWithParam<int> {};
+
+TEST_P(LinearSolverBlocks, GmresWithBlockIluSolvesAConvectionLikeSystem) {
+  // 1D chain of 200 nodes with a nonsymmetric, diagonally dominant block structure of the
+  // mean flow (4), mean flow + SA (5) or mean flow + a two-equation model (6)
+  const int nb = GetParam();
   const int n = 200;
   std::vector<std::array<int, 2>> edges;
   for (int i = 0; i + 1 < n; ++i) edges.push_back({i, i + 1});
   for (int i = 0; i + 7 < n; i += 3) edges.push_back({i, i + 7});
-  BlockSparseMatrix a = make_pattern(n, edges);
+  BlockSparseMatrix a = make_pattern(n, edges, nb);
+  ASSERT_EQ(a.block_size, nb);
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int i = 0; i < n; ++i) {
     for (int p = a.row_ptr[i]; p < a.row_ptr[i + 1]; ++p) {
       double* b = a.block(p);
-      for (int k = 0; k < 16; ++k) b[k] = 0.3 * u(rng);
+      for (int k = 0; k < nb * nb; ++k) b[k] = 0.3 * u(rng);
       if (a.col[p] == i) {
-        for (int k = 0; k < 4; ++k) b[5 * k] += 4.0;
+        for (int k = 0; k < nb; ++k) b[(nb + 1) * k] += 4.0;
       }
     }
   }
-  std::vector<double> x_true(4 * n), b;
+  std::vector<double> x_true(nb * n), b;
   for (auto& v : x_true) v = u(rng);
   a.multiply(x_true, b);
-  BlockIlu0 ilu;
-  ilu.factorize(a);
-  std::vector<double> x;
-  const GmresResult r = gmres(a, ilu, b, x, 1e-12, 30, 200);
-  EXPECT_LE(r.relative_residual, 1e-12);
-  EXPECT_LT(r.iterations, 40);
-  for (int k = 0; k < 4 * n; ++k) EXPECT_NEAR(x[k], x_true[k], 1e-10);
+  ASSERT_EQ(b.size(), x_true.size());
+  // the product against a dense row sum
+  for (int i : {0, 57, 199}) {
+    for (int r = 0; r < nb; ++r) {
+      double s = 0.0;
+      for (int p = a.row_ptr[i]; p < a.row_ptr[i + 1]; ++p) {
+        for (int c = 0; c < nb; ++c) s += a.block(p)[nb * r + c] * x_true[nb * a.col[p] + c];
+      }
+      EXPECT_NEAR(b[nb * i + r], s, 1e-13);
+    }
+  }
+  for (int partitions : {1, 2}) {
+    BlockIlu0 ilu;
+    ilu.factorize(a, partitions);
+    std::vector<double> x;
+    const GmresResult r = gmres(a, ilu, b, x, 1e-12, 30, 200);
+    EXPECT_LE(r.relative_residual, 1e-12);
+    EXPECT_LT(r.iterations, 40);
+    for (int k = 0; k < nb * n; ++k) EXPECT_NEAR(x[k], x_true[k], 1e-10);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(BlockSizes, LinearSolverBlocks, ::testing::Values(4, 5, 6));
+
+TEST(LinearSolver, UnsupportedBlockSizeIsRefused) {
+  EXPECT_THROW(make_pattern(3, {{0, 1}, {1, 2}}, 3), std::invalid_argument);
+}
+
+TEST(LinearSolver, BlockInverse5) {
+  double a[25];
+  for (int k = 0; k < 25; ++k) a[k] = std::sin(1.0 + 3.0 * k);
+  for (int k = 0; k < 5; ++k) a[6 * k] += 3.0;
+  double inv[25];
+  ASSERT_TRUE(invert_block(a, inv, 5));
+  for (int i = 0; i < 5; ++i) {
+    for (int j = 0; j < 5; ++j) {
+      double s = 0.0;
+      for (int k = 0; k < 5; ++k) s += a[5 * i + k] * inv[5 * k + j];
+      EXPECT_NEAR(s, i == j ? 1.0 : 0.0, 1e-13);
+    }
+  }
 }
 
 TEST(LinearSolver, BlockInverse) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 
 #include "gas.hpp"
 #include "mesh.hpp"
@@ -21,7 +22,9 @@ struct ViscousModel {
 
   double viscosity(double t) const {
     if (constant_mu > 0.0) return constant_mu;
-    return mu_ref * std::pow(t / t_ref, 1.5) * (t_ref + sutherland_s) / (t + sutherland_s);
+    // (t/t_ref)^1.5 as r sqrt(r): pow was 14 % of a second-order SA run (perf, issue 17)
+    const double r = t / t_ref;
+    return mu_ref * r * std::sqrt(r) * (t_ref + sutherland_s) / (t + sutherland_s);
   }
 };
 

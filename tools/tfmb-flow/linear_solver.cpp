@@ -2,54 +2,53 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
 
 namespace tfmb::flow {
 
 namespace {
 
-// c -= a * b for 4x4 blocks
+// The kernels are templates on the block size B so that the compiler unrolls them; the
+// matrix carries B at run time and dispatch() picks the instance.
+
+// c -= a * b for BxB blocks
+template <int B>
 inline void block_mul_sub(const double* a, const double* b, double* c) {
-  for (int i = 0; i < 4; ++i) {
-    for (int k = 0; k < 4; ++k) {
-      const double aik = a[4 * i + k];
-      for (int j = 0; j < 4; ++j)
-        c[4 * i + j] -= aik * b[4 * k + j];
+  for (int i = 0; i < B; ++i) {
+    for (int k = 0; k < B; ++k) {
+      const double aik = a[B * i + k];
+      for (int j = 0; j < B; ++j)
+        c[B * i + j] -= aik * b[B * k + j];
     }
   }
 }
+template <int B>
 inline void block_mul(const double* a, const double* b, double* c) {
-  for (int i = 0; i < 16; ++i)
+  for (int i = 0; i < B * B; ++i)
     c[i] = 0.0;
-  for (int i = 0; i < 4; ++i) {
-    for (int k = 0; k < 4; ++k) {
-      const double aik = a[4 * i + k];
-      for (int j = 0; j < 4; ++j)
-        c[4 * i + j] += aik * b[4 * k + j];
+  for (int i = 0; i < B; ++i) {
+    for (int k = 0; k < B; ++k) {
+      const double aik = a[B * i + k];
+      for (int j = 0; j < B; ++j)
+        c[B * i + j] += aik * b[B * k + j];
     }
   }
 }
-// y -= A x (4-vectors)
-inline void block_vec_sub(const double* a, const double* x, double* y) {
-  for (int i = 0; i < 4; ++i) {
-    y[i] -= a[4 * i] * x[0] + a[4 * i + 1] * x[1] + a[4 * i + 2] * x[2] + a[4 * i + 3] * x[3];
-  }
-}
 
-constexpr int kChunks = 64;
-
-}  // namespace
-
-bool invert_block(const double* a, double* inv) {
-  double m[4][8];
-  for (int i = 0; i < 4; ++i) {
-    for (int j = 0; j < 4; ++j) {
-      m[i][j] = a[4 * i + j];
-      m[i][4 + j] = i == j ? 1.0 : 0.0;
+template <int B>
+bool invert_block_fixed(const double* a, double* inv) {
+  double m[B][2 * B];
+  for (int i = 0; i < B; ++i) {
+    for (int j = 0; j < B; ++j) {
+      m[i][j] = a[B * i + j];
+      m[i][B + j] = i == j ? 1.0 : 0.0;
     }
   }
-  for (int c = 0; c < 4; ++c) {
+  for (int c = 0; c < B; ++c) {
     int p = c;
-    for (int r = c + 1; r < 4; ++r) {
+    for (int r = c + 1; r < B; ++r) {
       if (std::abs(m[r][c]) > std::abs(m[p][c]))
         p = r;
     }
@@ -58,23 +57,169 @@ bool invert_block(const double* a, double* inv) {
     if (p != c)
       std::swap(m[p], m[c]);
     const double d = 1.0 / m[c][c];
-    for (int j = 0; j < 8; ++j)
+    for (int j = 0; j < 2 * B; ++j)
       m[c][j] *= d;
-    for (int r = 0; r < 4; ++r) {
+    for (int r = 0; r < B; ++r) {
       if (r == c)
         continue;
       const double f = m[r][c];
       if (f == 0.0)
         continue;
-      for (int j = 0; j < 8; ++j)
+      for (int j = 0; j < 2 * B; ++j)
         m[r][j] -= f * m[c][j];
     }
   }
-  for (int i = 0; i < 4; ++i) {
-    for (int j = 0; j < 4; ++j)
-      inv[4 * i + j] = m[i][4 + j];
+  for (int i = 0; i < B; ++i) {
+    for (int j = 0; j < B; ++j)
+      inv[B * i + j] = m[i][B + j];
   }
   return true;
+}
+
+// Calls f(std::integral_constant<int, B>) for the run-time block size.
+template <typename F>
+decltype(auto) dispatch(int block_size, F&& f) {
+  switch (block_size) {
+    case 4:
+      return f(std::integral_constant<int, 4>{});
+    case 5:
+      return f(std::integral_constant<int, 5>{});
+    case 6:
+      return f(std::integral_constant<int, 6>{});
+    default:
+      throw std::invalid_argument("flow: block size " + std::to_string(block_size) +
+                                  " (expected 4, 5 or 6)");
+  }
+}
+
+template <int B>
+void multiply_fixed(const BlockSparseMatrix& m, const std::vector<double>& x,
+                    std::vector<double>& y) {
+  const int n = m.num_rows;
+#pragma omp parallel for schedule(static) if (n > 1000)
+  for (int i = 0; i < n; ++i) {
+    double acc[B] = {};
+    for (int p = m.row_ptr[i]; p < m.row_ptr[i + 1]; ++p) {
+      const double* a = m.block(p);
+      const double* xc = x.data() + B * static_cast<std::size_t>(m.col[p]);
+      for (int r = 0; r < B; ++r) {
+        double s = 0.0;
+        for (int c = 0; c < B; ++c)
+          s += a[B * r + c] * xc[c];
+        acc[r] += s;
+      }
+    }
+    for (int r = 0; r < B; ++r)
+      y[B * static_cast<std::size_t>(i) + r] = acc[r];
+  }
+}
+
+template <int B>
+void factorize_fixed(BlockSparseMatrix& lu, std::vector<int>& pos_of_col, int partitions) {
+  const int n = lu.num_rows;
+  // Each partition only reads and writes rows and columns of its own range, so the partitions
+  // are independent (and pos_of_col can be shared).
+#pragma omp parallel for schedule(static, 1)
+  for (int part = 0; part < partitions; ++part) {
+    const int lo = static_cast<int>(static_cast<long>(n) * part / partitions);
+    const int hi = static_cast<int>(static_cast<long>(n) * (part + 1) / partitions);
+    double tmp[B * B];
+    for (int i = lo; i < hi; ++i) {
+      for (int p = lu.row_ptr[i]; p < lu.row_ptr[i + 1]; ++p) {
+        const int c = lu.col[p];
+        if (c >= lo && c < hi)
+          pos_of_col[c] = p;
+      }
+      for (int p = lu.row_ptr[i]; p < lu.diag_pos[i]; ++p) {
+        const int k = lu.col[p];
+        if (k < lo)
+          continue;
+        // L_ik = A_ik * inv(U_kk)
+        block_mul<B>(lu.block(p), lu.block(lu.diag_pos[k]), tmp);
+        std::copy(tmp, tmp + B * B, lu.block(p));
+        for (int q = lu.diag_pos[k] + 1; q < lu.row_ptr[k + 1]; ++q) {
+          const int c = lu.col[q];
+          if (c >= hi)
+            continue;
+          const int target = pos_of_col[c];
+          if (target >= 0)
+            block_mul_sub<B>(lu.block(p), lu.block(q), lu.block(target));
+        }
+      }
+      double* d = lu.block(lu.diag_pos[i]);
+      if (!invert_block_fixed<B>(d, tmp)) {
+        // A singular pivot only happens for a broken operator; fall back to the identity.
+        for (int k = 0; k < B * B; ++k)
+          tmp[k] = (k % (B + 1) == 0) ? 1.0 : 0.0;
+      }
+      std::copy(tmp, tmp + B * B, d);
+      for (int p = lu.row_ptr[i]; p < lu.row_ptr[i + 1]; ++p) {
+        const int c = lu.col[p];
+        if (c >= lo && c < hi)
+          pos_of_col[c] = -1;
+      }
+    }
+  }
+}
+
+template <int B>
+void ilu_apply_fixed(const BlockSparseMatrix& lu, const std::vector<float>& factors,
+                     int partitions, const std::vector<double>& b, std::vector<double>& x) {
+  const int n = lu.num_rows;
+  const float* f = factors.data();
+  constexpr std::size_t kEntries = B * B;
+  auto sub = [](const float* a, const double* v, double* y) {  // y -= A v
+    for (int r = 0; r < B; ++r) {
+      double s = 0.0;
+      for (int c = 0; c < B; ++c)
+        s += static_cast<double>(a[B * r + c]) * v[c];
+      y[r] -= s;
+    }
+  };
+#pragma omp parallel for schedule(static, 1)
+  for (int part = 0; part < partitions; ++part) {
+    const int lo = static_cast<int>(static_cast<long>(n) * part / partitions);
+    const int hi = static_cast<int>(static_cast<long>(n) * (part + 1) / partitions);
+    std::copy(b.begin() + B * static_cast<std::size_t>(lo),
+              b.begin() + B * static_cast<std::size_t>(hi),
+              x.begin() + B * static_cast<std::size_t>(lo));
+    for (int i = lo; i < hi; ++i) {
+      double* xi = x.data() + B * static_cast<std::size_t>(i);
+      for (int p = lu.row_ptr[i]; p < lu.diag_pos[i]; ++p) {
+        const int c = lu.col[p];
+        if (c >= lo)
+          sub(f + kEntries * static_cast<std::size_t>(p), x.data() + B * static_cast<std::size_t>(c),
+              xi);
+      }
+    }
+    for (int i = hi - 1; i >= lo; --i) {
+      double* xi = x.data() + B * static_cast<std::size_t>(i);
+      for (int p = lu.diag_pos[i] + 1; p < lu.row_ptr[i + 1]; ++p) {
+        const int c = lu.col[p];
+        if (c < hi)
+          sub(f + kEntries * static_cast<std::size_t>(p), x.data() + B * static_cast<std::size_t>(c),
+              xi);
+      }
+      const float* d = f + kEntries * static_cast<std::size_t>(lu.diag_pos[i]);
+      double r[B];
+      for (int k = 0; k < B; ++k)
+        r[k] = xi[k];
+      for (int k = 0; k < B; ++k) {
+        double s = 0.0;
+        for (int c = 0; c < B; ++c)
+          s += static_cast<double>(d[B * k + c]) * r[c];
+        xi[k] = s;
+      }
+    }
+  }
+}
+
+constexpr int kChunks = 64;
+
+}  // namespace
+
+bool invert_block(const double* a, double* inv, int size) {
+  return dispatch(size, [&](auto b) { return invert_block_fixed<decltype(b)::value>(a, inv); });
 }
 
 int BlockSparseMatrix::find(int row, int column) const {
@@ -89,23 +234,12 @@ void BlockSparseMatrix::set_zero() {
 }
 
 void BlockSparseMatrix::multiply(const std::vector<double>& x, std::vector<double>& y) const {
-  y.resize(4 * static_cast<std::size_t>(num_rows));
-#pragma omp parallel for schedule(static) if (num_rows > 1000)
-  for (int i = 0; i < num_rows; ++i) {
-    double acc[4] = {0.0, 0.0, 0.0, 0.0};
-    for (int p = row_ptr[i]; p < row_ptr[i + 1]; ++p) {
-      const double* a = block(p);
-      const double* xc = x.data() + 4 * static_cast<std::size_t>(col[p]);
-      for (int r = 0; r < 4; ++r)
-        acc[r] +=
-            a[4 * r] * xc[0] + a[4 * r + 1] * xc[1] + a[4 * r + 2] * xc[2] + a[4 * r + 3] * xc[3];
-    }
-    for (int r = 0; r < 4; ++r)
-      y[4 * static_cast<std::size_t>(i) + r] = acc[r];
-  }
+  y.resize(block_size * static_cast<std::size_t>(num_rows));
+  dispatch(block_size, [&](auto b) { multiply_fixed<decltype(b)::value>(*this, x, y); });
 }
 
-BlockSparseMatrix make_pattern(int n, const std::vector<std::array<int, 2>>& edges) {
+BlockSparseMatrix make_pattern(int n, const std::vector<std::array<int, 2>>& edges,
+                               int block_size) {
   std::vector<std::vector<int>> rows(n);
   for (int i = 0; i < n; ++i)
     rows[i].push_back(i);
@@ -115,6 +249,8 @@ BlockSparseMatrix make_pattern(int n, const std::vector<std::array<int, 2>>& edg
   }
   BlockSparseMatrix m;
   m.num_rows = n;
+  m.block_size = block_size;
+  dispatch(block_size, [](auto) {});  // rejects an unsupported size here
   m.row_ptr.assign(n + 1, 0);
   m.diag_pos.resize(n);
   for (int i = 0; i < n; ++i) {
@@ -127,7 +263,7 @@ BlockSparseMatrix make_pattern(int n, const std::vector<std::array<int, 2>>& edg
       m.col.push_back(c);
     }
   }
-  m.val.assign(16 * m.col.size(), 0.0);
+  m.val.assign(static_cast<std::size_t>(m.block_entries()) * m.col.size(), 0.0);
   return m;
 }
 
@@ -136,95 +272,18 @@ void BlockIlu0::factorize(const BlockSparseMatrix& a, int partitions) {
   const int n = lu_.num_rows;
   partitions_ = std::max(1, std::min(partitions, n));
   pos_of_col_.assign(n, -1);
-  // Each partition only reads and writes rows and columns of its own range, so the partitions
-  // are independent (and pos_of_col_ can be shared).
-#pragma omp parallel for schedule(static, 1)
-  for (int part = 0; part < partitions_; ++part) {
-    const int lo = static_cast<int>(static_cast<long>(n) * part / partitions_);
-    const int hi = static_cast<int>(static_cast<long>(n) * (part + 1) / partitions_);
-    auto& pos_of_col = pos_of_col_;
-    double tmp[16];
-    for (int i = lo; i < hi; ++i) {
-      for (int p = lu_.row_ptr[i]; p < lu_.row_ptr[i + 1]; ++p) {
-        const int c = lu_.col[p];
-        if (c >= lo && c < hi)
-          pos_of_col[c] = p;
-      }
-      for (int p = lu_.row_ptr[i]; p < lu_.diag_pos[i]; ++p) {
-        const int k = lu_.col[p];
-        if (k < lo)
-          continue;
-        // L_ik = A_ik * inv(U_kk)
-        block_mul(lu_.block(p), lu_.block(lu_.diag_pos[k]), tmp);
-        std::copy(tmp, tmp + 16, lu_.block(p));
-        for (int q = lu_.diag_pos[k] + 1; q < lu_.row_ptr[k + 1]; ++q) {
-          const int c = lu_.col[q];
-          if (c >= hi)
-            continue;
-          const int target = pos_of_col[c];
-          if (target >= 0)
-            block_mul_sub(lu_.block(p), lu_.block(q), lu_.block(target));
-        }
-      }
-      double* d = lu_.block(lu_.diag_pos[i]);
-      if (!invert_block(d, tmp)) {
-        // A singular pivot only happens for a broken operator; fall back to the identity.
-        for (int k = 0; k < 16; ++k)
-          tmp[k] = (k % 5 == 0) ? 1.0 : 0.0;
-      }
-      std::copy(tmp, tmp + 16, d);
-      for (int p = lu_.row_ptr[i]; p < lu_.row_ptr[i + 1]; ++p) {
-        const int c = lu_.col[p];
-        if (c >= lo && c < hi)
-          pos_of_col[c] = -1;
-      }
-    }
-  }
+  dispatch(lu_.block_size,
+           [&](auto b) { factorize_fixed<decltype(b)::value>(lu_, pos_of_col_, partitions_); });
   factors_.resize(lu_.val.size());
   for (std::size_t k = 0; k < factors_.size(); ++k)
     factors_[k] = static_cast<float>(lu_.val[k]);
 }
 
 void BlockIlu0::apply(const std::vector<double>& b, std::vector<double>& x) const {
-  const int n = lu_.num_rows;
   x.resize(b.size());
-  const float* f = factors_.data();
-  auto sub = [](const float* a, const double* v, double* y) {  // y -= A v
-    for (int r = 0; r < 4; ++r) {
-      y[r] -= static_cast<double>(a[4 * r]) * v[0] + static_cast<double>(a[4 * r + 1]) * v[1] +
-              static_cast<double>(a[4 * r + 2]) * v[2] + static_cast<double>(a[4 * r + 3]) * v[3];
-    }
-  };
-#pragma omp parallel for schedule(static, 1)
-  for (int part = 0; part < partitions_; ++part) {
-    const int lo = static_cast<int>(static_cast<long>(n) * part / partitions_);
-    const int hi = static_cast<int>(static_cast<long>(n) * (part + 1) / partitions_);
-    std::copy(b.begin() + 4 * static_cast<std::size_t>(lo),
-              b.begin() + 4 * static_cast<std::size_t>(hi),
-              x.begin() + 4 * static_cast<std::size_t>(lo));
-    for (int i = lo; i < hi; ++i) {
-      double* xi = x.data() + 4 * static_cast<std::size_t>(i);
-      for (int p = lu_.row_ptr[i]; p < lu_.diag_pos[i]; ++p) {
-        const int c = lu_.col[p];
-        if (c >= lo)
-          sub(f + 16 * static_cast<std::size_t>(p), x.data() + 4 * static_cast<std::size_t>(c), xi);
-      }
-    }
-    for (int i = hi - 1; i >= lo; --i) {
-      double* xi = x.data() + 4 * static_cast<std::size_t>(i);
-      for (int p = lu_.diag_pos[i] + 1; p < lu_.row_ptr[i + 1]; ++p) {
-        const int c = lu_.col[p];
-        if (c < hi)
-          sub(f + 16 * static_cast<std::size_t>(p), x.data() + 4 * static_cast<std::size_t>(c), xi);
-      }
-      const float* d = f + 16 * static_cast<std::size_t>(lu_.diag_pos[i]);
-      const double r[4] = {xi[0], xi[1], xi[2], xi[3]};
-      for (int k = 0; k < 4; ++k) {
-        xi[k] = static_cast<double>(d[4 * k]) * r[0] + static_cast<double>(d[4 * k + 1]) * r[1] +
-                static_cast<double>(d[4 * k + 2]) * r[2] + static_cast<double>(d[4 * k + 3]) * r[3];
-      }
-    }
-  }
+  dispatch(lu_.block_size, [&](auto bs) {
+    ilu_apply_fixed<decltype(bs)::value>(lu_, factors_, partitions_, b, x);
+  });
 }
 
 double dot_product(const std::vector<double>& a, const std::vector<double>& b) {

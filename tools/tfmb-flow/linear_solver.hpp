@@ -1,4 +1,5 @@
-// Block-sparse (4x4 BSR) matrix of the implicit operator, its block ILU(0) factorisation and a
+// Block-sparse (BSR) matrix of the implicit operator with 4x4 (mean flow), 5x5 (mean flow and
+// one turbulence equation) or 6x6 blocks, its block ILU(0) factorisation and a
 // right-preconditioned restarted GMRES (Saad 2003, Iterative Methods for Sparse Linear Systems,
 // alg. 6.10 and 10.4). Reductions use a fixed chunking, so results do not depend on the number
 // of threads.
@@ -13,20 +14,25 @@ namespace tfmb::flow {
 
 struct BlockSparseMatrix {
   int num_rows = 0;
+  int block_size = 4;         // unknowns per node: 4, 5 or 6
   std::vector<int> row_ptr;   // size num_rows + 1
   std::vector<int> col;       // block column ids, sorted within a row
   std::vector<int> diag_pos;  // position of the diagonal block of each row
-  std::vector<double> val;    // 16 per block, row-major
+  std::vector<double> val;    // block_size^2 per block, row-major
 
-  double* block(int pos) { return val.data() + 16 * static_cast<std::size_t>(pos); }
-  const double* block(int pos) const { return val.data() + 16 * static_cast<std::size_t>(pos); }
+  int block_entries() const { return block_size * block_size; }
+  double* block(int pos) { return val.data() + block_entries() * static_cast<std::size_t>(pos); }
+  const double* block(int pos) const {
+    return val.data() + block_entries() * static_cast<std::size_t>(pos);
+  }
   int find(int row, int column) const;  // position or -1
   void set_zero();
   void multiply(const std::vector<double>& x, std::vector<double>& y) const;  // y = A x
 };
 
 // Pattern of a node graph given by its edges: diagonal plus both off-diagonals per edge.
-BlockSparseMatrix make_pattern(int num_nodes, const std::vector<std::array<int, 2>>& edges);
+BlockSparseMatrix make_pattern(int num_nodes, const std::vector<std::array<int, 2>>& edges,
+                               int block_size = 4);
 
 class BlockIlu0 {
  public:
@@ -74,7 +80,8 @@ GmresResult gmres(const LinearOperator& a, const BlockIlu0& precond, const std::
 // Deterministic dot product (fixed chunk partition, ordered sum of chunk sums).
 double dot_product(const std::vector<double>& a, const std::vector<double>& b);
 
-// Inverse of a 4x4 block by Gauss-Jordan with partial pivoting. Returns false if singular.
-bool invert_block(const double* a, double* inverse);
+// Inverse of a size x size block (size 4, 5 or 6) by Gauss-Jordan with partial pivoting.
+// Returns false if singular.
+bool invert_block(const double* a, double* inverse, int size = 4);
 
 }  // namespace tfmb::flow

@@ -86,6 +86,12 @@ int main(int argc, char** argv) {
                  "Jacobian (false: the first-order Jacobian alone, cheaper per iteration but it "
                  "caps the CFL on stretched wall layers)")
       ->capture_default_str();
+  app.add_option("--turbulence-coupling", o.turbulence_coupling,
+                 "SA: segregated (one implicit nu_tilde step after each mean-flow step, eddy "
+                 "viscosity lagged) or coupled (mean flow and nu_tilde in one Newton step, 5x5 "
+                 "blocks; with --matrix-free true the Krylov operator holds every cross term)")
+      ->check(CLI::IsMember({"segregated", "coupled"}))
+      ->capture_default_str();
   app.add_option("--entropy-fix", o.settings.entropy_fix,
                  "[-] Harten entropy-fix width as a fraction of the sound speed")
       ->capture_default_str();

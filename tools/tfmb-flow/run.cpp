@@ -173,6 +173,7 @@ RunResult run(const RunOptions& o, const Logger& log) {
   settings.viscous = viscous;
   settings.turbulent = turbulent;
   settings.sa_ft2 = o.model != "sa-noft2";
+  settings.turbulence_coupled = turbulent && o.turbulence_coupling == "coupled";
   const double p_ref = has_inflow ? o.stagnation_pressure : o.ambient_pressure;
   const double t_ref = has_inflow ? o.stagnation_temperature : t_inf;
   const double rho_ref = p_ref / (o.gas_constant * t_ref);
@@ -460,6 +461,8 @@ RunResult run(const RunOptions& o, const Logger& log) {
       << "\nwall_aligned_aspect_ratio = " << settings.wall_aligned_aspect_ratio
       << "\nmatrix_free = " << (settings.matrix_free ? "true" : "false")
       << "\nfirst_order_start = " << (o.first_order_start ? "true" : "false")
+      << "\nturbulence_coupling = \"" << (settings.turbulence_coupled ? "coupled" : "segregated")
+      << "\""
       << "\nthreads = " << settings.threads << "\n";
     prov.settings = s.str();
     prov.inputs = {o.mesh_file};

@@ -35,6 +35,7 @@ struct RunOptions {
   // Second order without a restart file: converge first order first (same settings, its own
   // iteration limit), then continue at second order from that state, as a restart would.
   bool first_order_start = false;
+  std::string turbulence_coupling = "segregated";  // segregated | coupled (SA)
   SolverSettings settings;
   std::string command_line;
 };

@@ -202,6 +202,12 @@ FlowSolver::FlowSolver(const Mesh& mesh, Geometry geometry, const PerfectGas& ga
     }
     wall_distance_ = tfmb::flow::wall_distance(dual_.coords, walls);
     nu_tilde_.assign(n, 0.0);
+    if (settings_.turbulence_coupled) {
+      jac_coupled_ = make_pattern(dual_.num_nodes, dual_.edges, 5);
+      sa_row_scale_ = settings_.reference_state[0];
+    }
+  } else {
+    settings_.turbulence_coupled = false;  // nothing to couple
   }
 }
 
@@ -287,18 +293,24 @@ void FlowSolver::update_eddy_viscosity() {
   }
 }
 
-double FlowSolver::turbulence_step(double cfl) {
-  // One implicit step of the nu_tilde equation, non-conservative form (TMR "SA"):
+void FlowSolver::turbulence_residual(bool jacobian, const std::vector<double>* diag_scale) {
+  // The nu_tilde equation in non-conservative form (TMR "SA"):
   //   D nu_tilde/Dt = P - D + 1/sigma [div((nu + nu_tilde) grad nu_tilde) + cb2 |grad nu_tilde|^2],
   // the diffusion split as (1 + cb2)/sigma div(D grad nu_tilde) - cb2/sigma D_i lap(nu_tilde)
   // (Spalart and Allmaras 1994; the edge form used by FUN3D), first-order upwind convection.
-  // rhs = V d nu_tilde / dt; the matrix V/dt - d rhs / d nu_tilde is an M-matrix, solved by
-  // three ILU(0)-preconditioned defect corrections.
+  // rhs = V d nu_tilde / dt = -sa_res_; the matrix V/dt - d rhs / d nu_tilde is an M-matrix.
   const int n = dual_.num_nodes;
   const auto& visc = settings_.viscosity;
   const auto& inc = dual_.node_edges;
-  std::vector<double> rhs(n, 0.0), diag(n, 0.0), nu(n), diffusivity(n),
-      offdiag(inc.edge.size(), 0.0);
+  sa_res_.resize(n);
+  sa_nu_.resize(n);
+  sa_diffusivity_.resize(n);
+  if (jacobian) {
+    sa_diag_.assign(n, 0.0);
+    sa_offdiag_.assign(inc.edge.size(), 0.0);
+  }
+  std::vector<double>& nu = sa_nu_;
+  std::vector<double>& diffusivity = sa_diffusivity_;
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     nu[i] = visc.viscosity(gas_.temperature(w_[i])) / w_[i][0];
@@ -306,7 +318,7 @@ double FlowSolver::turbulence_step(double cfl) {
   }
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
-    double r = 0.0, d = spectral_radius_[i] / cfl;
+    double r = 0.0, d = diag_scale ? (*diag_scale)[i] : 0.0;
     for (int k = inc.offsets[i]; k < inc.offsets[i + 1]; ++k) {
       const int e = inc.edge[k];
       const int j = inc.neighbour[k];
@@ -318,12 +330,15 @@ double FlowSolver::turbulence_step(double cfl) {
       const double d_face = 0.5 * (diffusivity[i] + diffusivity[j]);
       const double k_i = c / sa::sigma * ((1.0 + sa::cb2) * d_face - sa::cb2 * diffusivity[i]);
       r += (inflow + k_i) * (nu_tilde_[j] - nu_tilde_[i]);
-      const double a = inflow + std::max(k_i, 0.0);
-      d += a;
-      offdiag[k] = -a;
+      if (jacobian) {
+        const double a = inflow + std::max(k_i, 0.0);
+        d += a;
+        sa_offdiag_[k] = -a;
+      }
     }
-    rhs[i] = r;
-    diag[i] = d;
+    sa_res_[i] = -r;
+    if (jacobian)
+      sa_diag_[i] = d;
   }
   for (const auto& face : dual_.boundary_faces) {
     const int i = face.node;
@@ -337,35 +352,61 @@ double FlowSolver::turbulence_step(double cfl) {
       const State& inf = bc.node_freestream.empty() ? bc.freestream : bc.node_freestream[i];
       nu_b = visc.viscosity(gas_.temperature(inf)) / inf[0];
     }
-    rhs[i] += -vn * (settings_.sa_freestream_ratio * nu_b - nu_tilde_[i]);
-    diag[i] += -vn;
+    sa_res_[i] -= -vn * (settings_.sa_freestream_ratio * nu_b - nu_tilde_[i]);
+    if (jacobian)
+      sa_diag_[i] += -vn;
   }
-  double sum2 = 0.0;
-#pragma omp parallel for schedule(static) reduction(+ : sum2)
+#pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     if (wall_node_bc_[i] >= 0) {
       // strong nu_tilde = 0 on no-slip walls
-      diag[i] = 1.0;
-      rhs[i] = -nu_tilde_[i];
-      for (int k = inc.offsets[i]; k < inc.offsets[i + 1]; ++k)
-        offdiag[k] = 0.0;
+      sa_res_[i] = nu_tilde_[i];
+      if (jacobian) {
+        sa_diag_[i] = 1.0;
+        for (int k = inc.offsets[i]; k < inc.offsets[i + 1]; ++k)
+          sa_offdiag_[k] = 0.0;
+      }
       continue;
     }
     const double volume = dual_.volume[i];
     const double vorticity = std::abs(grad_[i][4] - grad_[i][3]);  // |dv/dx - du/dy|
     const sa::Source src =
         sa::source(nu_tilde_[i], nu[i], vorticity, wall_distance_[i], settings_.sa_ft2);
-    rhs[i] += volume * (src.production - src.destruction);
-    diag[i] -= volume * src.d_source;
-    sum2 += (rhs[i] / volume) * (rhs[i] / volume);
+    sa_res_[i] -= volume * (src.production - src.destruction);
+    if (jacobian)
+      sa_diag_[i] -= volume * src.d_source;
   }
-  std::vector<double> delta;
-  solve_scalar(inc, diag, offdiag, rhs, delta, 3, sa_ilu_);
+}
+
+double FlowSolver::turbulence_residual_norm() const {
+  double sum2 = 0.0;
+  for (int i = 0; i < dual_.num_nodes; ++i) {
+    if (wall_node_bc_[i] >= 0)
+      continue;
+    const double r = sa_res_[i] / dual_.volume[i];
+    sum2 += r * r;
+  }
+  return std::sqrt(sum2 / dual_.num_nodes);
+}
+
+double FlowSolver::turbulence_step(double cfl) {
+  // One implicit step of the nu_tilde equation with the local time step of the mean flow,
+  // solved by three ILU(0)-preconditioned defect corrections.
+  const int n = dual_.num_nodes;
+  std::vector<double> time_term(n);
+  for (int i = 0; i < n; ++i)
+    time_term[i] = spectral_radius_[i] / cfl;
+  turbulence_residual(true, &time_term);
+  const double rms = turbulence_residual_norm();
+  std::vector<double> rhs(n), delta;
+  for (int i = 0; i < n; ++i)
+    rhs[i] = -sa_res_[i];
+  solve_scalar(dual_.node_edges, sa_diag_, sa_offdiag_, rhs, delta, 3, sa_ilu_);
   for (int i = 0; i < n; ++i) {
     if (std::isfinite(delta[i]))
       nu_tilde_[i] += delta[i];
   }
-  return std::sqrt(sum2 / n);
+  return rms;
 }
 
 void FlowSolver::set_uniform(const State& w) {
@@ -495,6 +536,13 @@ void FlowSolver::compute_residual(bool update_limiter) {
     State r{};
     double lambda = 0.0;
     const double ci = gas_.sound_speed(w_[i]);
+    // viscous spectral radius coefficient of node i (Blazek 2015, eq. 6.22), once per node
+    const double viscous_coefficient =
+        settings_.viscous
+            ? std::max(4.0 / 3.0, gas_.gamma / settings_.viscosity.prandtl) *
+                  (settings_.viscosity.viscosity(gas_.temperature(w_[i])) + eddy_viscosity_[i]) /
+                  w_[i][0] / dual_.area[i]
+            : 0.0;
     for (int k = inc.offsets[i]; k < inc.offsets[i + 1]; ++k) {
       const int e = inc.edge[k];
       const double s = inc.sign[k];
@@ -511,11 +559,8 @@ void FlowSolver::compute_residual(bool update_limiter) {
         // against m^3/s per radian). Scaling it by volume/area (consistent units) left the
         // steady solutions unchanged but slowed convergence: turbulent pipe 989 instead of 402
         // iterations, Poiseuille 375 instead of 290, BMG SA 71x41 193 instead of 131; kept.
-        const double mu =
-            settings_.viscosity.viscosity(gas_.temperature(w_[i])) + eddy_viscosity_[i];
         const double sn = norm(dual_.edge_normal_planar[e]);
-        lambda += std::max(4.0 / 3.0, gas_.gamma / settings_.viscosity.prandtl) * mu / w_[i][0] *
-                  sn * sn / dual_.area[i];
+        lambda += viscous_coefficient * sn * sn;
       }
     }
     res_[i] = r;
@@ -554,6 +599,33 @@ void FlowSolver::compute_residual(bool update_limiter) {
                               eddy_viscosity_[i]);
       }
       res_[i][2] -= source * dual_.area[i];
+    }
+  }
+  if (turbulent && settings_.turbulence_coupled)
+    turbulence_residual(false, nullptr);
+}
+
+void FlowSolver::assemble_coupled_jacobian() {
+  const int n = dual_.num_nodes;
+  const auto& inc = dual_.node_edges;
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    for (int p = jac_.row_ptr[i]; p < jac_.row_ptr[i + 1]; ++p) {
+      const double* a = jac_.block(p);
+      double* c = jac_coupled_.block(p);
+      for (int r = 0; r < 4; ++r) {
+        for (int q = 0; q < 4; ++q)
+          c[5 * r + q] = a[4 * r + q];
+        c[5 * r + 4] = 0.0;
+      }
+      for (int q = 0; q < 5; ++q)
+        c[20 + q] = 0.0;
+    }
+    jac_coupled_.block(jac_coupled_.diag_pos[i])[24] = sa_row_scale_ * sa_diag_[i];
+    for (int k = inc.offsets[i]; k < inc.offsets[i + 1]; ++k) {
+      const int e = inc.edge[k];
+      const int pos = inc.sign[k] > 0 ? edge_pos_ij_[e] : edge_pos_ji_[e];
+      jac_coupled_.block(pos)[24] = sa_row_scale_ * sa_offdiag_[k];
     }
   }
 }
@@ -733,20 +805,47 @@ LinearOperator FlowSolver::matrix_free_operator(const std::vector<double>& diag_
   // Rows the assembled Jacobian replaces (strong wall conditions, imposed far-field nodes) keep
   // their assembled form; every other row is V/dt x + (R(u + eps x) - R(u)) / eps with the
   // limiter frozen at its current value, so the product is the derivative of the residual the
-  // iteration drives to zero.
+  // iteration drives to zero. Coupled: nu_tilde is the fifth unknown of each node and its row
+  // the nu_tilde residual times sa_row_scale_.
   const int n = dual_.num_nodes;
+  const bool coupled = settings_.turbulence_coupled;
+  const int nb = coupled ? 5 : 4;
   auto base_u = std::make_shared<std::vector<State>>(u_);
   auto base_res = std::make_shared<std::vector<State>>(res_);
+  auto base_nu = std::make_shared<std::vector<double>>(coupled ? nu_tilde_ : std::vector<double>{});
+  auto base_sa_res =
+      std::make_shared<std::vector<double>>(coupled ? sa_res_ : std::vector<double>{});
   double u_norm2 = 0.0;
   for (const auto& s : u_) {
     for (double c : s)
       u_norm2 += c * c;
   }
   const double u_norm = std::sqrt(u_norm2);
-  return [this, n, base_u, base_res, u_norm, &diag_scale](const std::vector<double>& x,
-                                                          std::vector<double>& y) {
-    jac_.multiply(x, y);
-    const double x_norm = std::sqrt(dot_product(x, x));
+  // nu_tilde's own scale per node (|nu_tilde| + nu, nu_tilde may be 0 or negative) and the
+  // weight that makes the perturbation of nu_tilde as relative as that of the mean flow
+  auto nu_scale = std::make_shared<std::vector<double>>();
+  double nu_weight = 0.0;
+  if (coupled) {
+    nu_scale->resize(n);
+    double nu_norm2 = 0.0;
+    for (int i = 0; i < n; ++i) {
+      const double s = std::abs(nu_tilde_[i]) + sa_nu_[i];
+      (*nu_scale)[i] = s;
+      nu_norm2 += s * s;
+    }
+    nu_weight = u_norm / std::max(std::sqrt(nu_norm2), 1e-300);
+  }
+  return [this, n, nb, coupled, base_u, base_res, base_nu, base_sa_res, nu_scale, nu_weight,
+          u_norm, &diag_scale](const std::vector<double>& x, std::vector<double>& y) {
+    system_matrix().multiply(x, y);
+    double x_norm2 = 0.0;
+    for (int i = 0; i < n; ++i) {
+      const double* xi = x.data() + nb * static_cast<std::size_t>(i);
+      x_norm2 += xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2] + xi[3] * xi[3];
+      if (coupled)
+        x_norm2 += nu_weight * nu_weight * xi[4] * xi[4];
+    }
+    const double x_norm = std::sqrt(x_norm2);
     if (x_norm == 0.0)
       return;
     // relative perturbation ~1e-7: half the digits for the difference, half for its accuracy
@@ -759,7 +858,7 @@ LinearOperator FlowSolver::matrix_free_operator(const std::vector<double>& diag_
     double node_limit = std::numeric_limits<double>::infinity();
     for (int i = 0; i < n; ++i) {
       const State& u = (*base_u)[i];
-      const double* xi = x.data() + 4 * static_cast<std::size_t>(i);
+      const double* xi = x.data() + nb * static_cast<std::size_t>(i);
       const double rho = u[0];
       const double vx = u[1] / rho, vy = u[2] / rho;
       const double p = (gas_.gamma - 1.0) * (u[3] - 0.5 * rho * (vx * vx + vy * vy));
@@ -769,23 +868,33 @@ LinearOperator FlowSolver::matrix_free_operator(const std::vector<double>& diag_
         node_limit = std::min(node_limit, 1e-6 * rho / std::abs(xi[0]));
       if (dp != 0.0)
         node_limit = std::min(node_limit, 1e-6 * p / std::abs(dp));
+      if (coupled && xi[4] != 0.0)
+        node_limit = std::min(node_limit, 1e-6 * (*nu_scale)[i] / std::abs(xi[4]));
     }
     eps = std::max(std::min(eps, node_limit), 1e-4 * eps);
     for (int i = 0; i < n; ++i) {
       for (int v = 0; v < 4; ++v)
-        u_[i][v] = (*base_u)[i][v] + eps * x[4 * i + v];
+        u_[i][v] = (*base_u)[i][v] + eps * x[nb * i + v];
+      if (coupled)
+        nu_tilde_[i] = (*base_nu)[i] + eps * x[nb * i + 4];
     }
     compute_residual(false);
     u_ = *base_u;
+    if (coupled)
+      nu_tilde_ = *base_nu;
     for (int i = 0; i < n; ++i) {
+      const bool wall = wall_node_bc_[i] >= 0;
+      if (coupled && !wall) {
+        y[nb * i + 4] = sa_row_scale_ * (diag_scale[i] * x[nb * i + 4] +
+                                         (sa_res_[i] - (*base_sa_res)[i]) / eps);
+      }
       if (fixed_node_[i])
         continue;
-      const bool wall = wall_node_bc_[i] >= 0;
       const bool iso = wall && bcs_[wall_node_bc_[i]].kind == BcKind::wall_isothermal;
       for (int v = 0; v < 4; ++v) {
         if (wall && (v == 1 || v == 2 || (v == 3 && iso)))
           continue;
-        y[4 * i + v] = diag_scale[i] * x[4 * i + v] + (res_[i][v] - (*base_res)[i][v]) / eps;
+        y[nb * i + v] = diag_scale[i] * x[nb * i + v] + (res_[i][v] - (*base_res)[i][v]) / eps;
       }
     }
   };
@@ -797,9 +906,12 @@ SolveReport FlowSolver::solve() {
   const auto start = clock::now();
   SolveReport report;
   const int n = dual_.num_nodes;
-  std::vector<double> rhs(4 * static_cast<std::size_t>(n)), du(4 * static_cast<std::size_t>(n));
+  const bool coupled = settings_.turbulence_coupled;
+  const int nb = coupled ? 5 : 4;  // unknowns per node
+  std::vector<double> rhs(nb * static_cast<std::size_t>(n)), du(nb * static_cast<std::size_t>(n));
   std::vector<double> diag_scale(n);
   std::vector<State> u_good = u_;
+  std::vector<double> nu_good = nu_tilde_;
   double cfl = settings_.cfl_start;
   double cfl_scale = 1.0;
   double last_omega = 1.0;
@@ -853,6 +965,8 @@ SolveReport FlowSolver::solve() {
     if (!std::isfinite(rnorm[0] + rnorm[1] + rnorm[2] + rnorm[3])) {
       // Non-physical residual: go back to the last good state with a smaller CFL.
       u_ = u_good;
+      if (coupled)
+        nu_tilde_ = nu_good;
       cfl_scale *= 0.1;
       cfl = std::max(cfl * 0.1, 1e-3);
       ++report.backoffs;
@@ -962,20 +1076,28 @@ SolveReport FlowSolver::solve() {
     for (int i = 0; i < n; ++i)
       diag_scale[i] = spectral_radius_[i] / cfl;  // V / dt
     assemble_jacobian(diag_scale);
+    if (coupled) {
+      rec.turbulence_residual = turbulence_residual_norm();
+      turbulence_residual(true, &diag_scale);
+      assemble_coupled_jacobian();
+    }
     for (int i = 0; i < n; ++i) {
+      double* rhs_i = rhs.data() + nb * static_cast<std::size_t>(i);
       for (int v = 0; v < 4; ++v)
-        rhs[4 * i + v] = fixed_node_[i] ? fixed_u_[i][v] - u_[i][v] : -res_[i][v];
+        rhs_i[v] = fixed_node_[i] ? fixed_u_[i][v] - u_[i][v] : -res_[i][v];
+      if (coupled)
+        rhs_i[4] = -sa_row_scale_ * sa_res_[i];
       const int b = wall_node_bc_[i];
       if (b >= 0) {
         // strong conditions: drive momentum (and rho E - rho cv Tw) to zero
-        rhs[4 * i + 1] = -u_[i][1];
-        rhs[4 * i + 2] = -u_[i][2];
+        rhs_i[1] = -u_[i][1];
+        rhs_i[2] = -u_[i][2];
         if (bcs_[b].kind == BcKind::wall_isothermal) {
-          rhs[4 * i + 3] = -(u_[i][3] - u_[i][0] * gas_.cv() * wall_temperature_at(b, i));
+          rhs_i[3] = -(u_[i][3] - u_[i][0] * gas_.cv() * wall_temperature_at(b, i));
         }
       }
     }
-    ilu_.factorize(jac_, settings_.ilu_partitions);
+    ilu_.factorize(system_matrix(), settings_.ilu_partitions);
     GmresResult lin;
     if (settings_.order >= 2 && settings_.matrix_free) {
       // no restart: restarted GMRES(20) stagnated outright (relative residual 1.0 after 80
@@ -985,7 +1107,7 @@ SolveReport FlowSolver::solve() {
                   settings_.gmres_max_iterations, gmres_workspace_);
       compute_residual(false);  // back to the state's own residual, gradients and viscosities
     } else {
-      lin = gmres(jac_, ilu_, rhs, du, settings_.linear_tolerance, settings_.gmres_restart,
+      lin = gmres(system_matrix(), ilu_, rhs, du, settings_.linear_tolerance, settings_.gmres_restart,
                   settings_.gmres_max_iterations, gmres_workspace_);
     }
     rec.linear_iterations = lin.iterations;
@@ -999,10 +1121,13 @@ SolveReport FlowSolver::solve() {
     int omega_node = -1;
     int limited = 0;
     u_good = u_;
+    if (coupled)
+      nu_good = nu_tilde_;
     for (int i = 0; i < n; ++i) {
+      const double* du_i = du.data() + nb * static_cast<std::size_t>(i);
       State un = u_[i];
       for (int v = 0; v < 4; ++v)
-        un[v] += du[4 * i + v];
+        un[v] += du_i[v];
       const State wn = gas_.primitive(un);
       const State& wo = w_[i];
       const double change =
@@ -1012,13 +1137,24 @@ SolveReport FlowSolver::solve() {
         omega_i = 0.0;
       else if (change > settings_.max_relative_update)
         omega_i = settings_.max_relative_update / change;
+      if (coupled && wall_node_bc_[i] < 0) {
+        // nu_tilde may grow by a factor 1 + max_turbulence_update per step and fall by the
+        // same fraction of its scale |nu_tilde| + nu: the Newton step of the source terms
+        // overshoots where production outruns destruction (a physicality-based step limit)
+        const double scale = std::abs(nu_tilde_[i]) + sa_nu_[i];
+        const double change_nu = std::abs(du_i[4]) / scale;
+        if (!std::isfinite(change_nu))
+          omega_i = 0.0;
+        else if (change_nu * omega_i > settings_.max_turbulence_update)
+          omega_i = settings_.max_turbulence_update / change_nu;
+      }
       // The primitive change is not linear in omega (kinetic energy): halve omega until the
       // relaxed state is physical and within the allowed change, rather than freezing the node
       // (a frozen node near a near-vacuum lip corner never recovers, its residual grows and the
       // SER ramp then collapses the CFL everywhere).
       for (int halving = 0;; ++halving) {
         for (int v = 0; v < 4; ++v)
-          un[v] = u_[i][v] + omega_i * du[4 * i + v];
+          un[v] = u_[i][v] + omega_i * du_i[v];
         const double p_new =
             (gas_.gamma - 1.0) * (un[3] - 0.5 * (un[1] * un[1] + un[2] * un[2]) / un[0]);
         const bool ok = un[0] > 0.0 && p_new > kPressureFloor * un[3] &&
@@ -1033,6 +1169,13 @@ SolveReport FlowSolver::solve() {
         omega_i *= 0.5;
       }
       u_[i] = un;
+      if (coupled) {
+        // the same fraction of the Newton step for nu_tilde; strong 0 on no-slip walls
+        if (wall_node_bc_[i] >= 0)
+          nu_tilde_[i] = 0.0;
+        else if (std::isfinite(du_i[4]))
+          nu_tilde_[i] += omega_i * du_i[4];
+      }
       if (omega_i < 1.0)
         ++limited;
       if (omega_i < omega_min) {
@@ -1041,7 +1184,7 @@ SolveReport FlowSolver::solve() {
       }
     }
     apply_strong_conditions(u_);
-    if (settings_.turbulent)
+    if (settings_.turbulent && !coupled)
       rec.turbulence_residual = turbulence_step(cfl);
     const double limited_fraction = static_cast<double>(limited) / n;
     rec.relaxation = omega_min;
@@ -1049,6 +1192,8 @@ SolveReport FlowSolver::solve() {
     last_omega = limited_fraction <= settings_.relaxed_fraction_tolerated ? 1.0 : omega_min;
     if (!physical(u_)) {
       u_ = u_good;
+      if (coupled)
+        nu_tilde_ = nu_good;
       cfl_scale *= 0.1;
       cfl *= 0.1;
       ++report.backoffs;
@@ -1089,8 +1234,11 @@ SolveReport FlowSolver::solve() {
   }
   if (!report.converged) {
     compute_residual(!limiter_frozen_);
-    if (!physical(u_))
+    if (!physical(u_)) {
       u_ = u_good;
+      if (coupled)
+        nu_tilde_ = nu_good;
+    }
   }
   report.wall_time = std::chrono::duration<double>(clock::now() - start).count();
   return report;

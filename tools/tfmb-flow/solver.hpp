@@ -84,6 +84,8 @@ struct SolverSettings {
   int ilu_partitions = 2;
   int gmres_max_iterations = 80;
   double max_relative_update = 0.5;  // largest relative change of rho or p per node and iteration
+  // Coupled SA: largest change of nu_tilde per node and iteration relative to |nu_tilde| + nu.
+  double max_turbulence_update = 1.0;
   // Fraction of nodes whose update may be relaxed without slowing the CFL ramp.
   double relaxed_fraction_tolerated = 0.002;
   // First-order Jacobian of the Roe flux: frozen dissipation (default) or by finite differences
@@ -96,6 +98,12 @@ struct SolverSettings {
   // implicit step (first-order upwind convection, same local time step) after each mean-flow
   // update, with the eddy viscosity lagged by one iteration in the mean-flow equations.
   bool turbulent = false;
+  // Coupled: mean flow and nu_tilde in one Newton step, a 5x5 block system per node (the
+  // segregated step lags the eddy viscosity by an iteration and never sees how the mean flow
+  // responds to nu_tilde). With matrix_free the Krylov operator is the exact derivative of the
+  // whole residual, cross terms included; the preconditioner is the first-order mean-flow
+  // Jacobian beside the scalar nu_tilde Jacobian of the segregated step (no cross blocks).
+  bool turbulence_coupled = false;
   bool sa_ft2 = true;                // the ft2 term of standard SA (TMR "SA"); false: SA-noft2
   double sa_freestream_ratio = 3.0;  // nu_tilde / nu entering at inflow and far field (TMR)
   int threads = 1;                   // OpenMP threads used inside solve() and residual()
@@ -194,7 +202,20 @@ class FlowSolver {
   bool physical(const std::vector<State>& u) const;
   void update_eddy_viscosity();
   double wall_temperature_at(int bc, int node) const;
-  double turbulence_step(double cfl);  // returns the RMS of d nu_tilde / dt
+  double turbulence_step(double cfl);  // segregated; returns the RMS of d nu_tilde / dt
+  // Residual of the nu_tilde equation, sa_res_ = -V d nu_tilde/dt (net outflow sign, as res_;
+  // on no-slip walls nu_tilde itself, whose strong value is 0), and with `jacobian` its scalar
+  // Jacobian in sa_diag_ / sa_offdiag_ (an M-matrix: upwind convection, the positive diffusion
+  // coefficients, the stabilising part of the source), the diagonal starting from diag_scale
+  // (V/dt) when given.
+  void turbulence_residual(bool jacobian, const std::vector<double>* diag_scale);
+  double turbulence_residual_norm() const;  // RMS of sa_res_ / V off the walls
+  // The coupled 5x5 system: mean-flow blocks of jac_, the nu_tilde row of sa_diag_ and
+  // sa_offdiag_ scaled by sa_row_scale_.
+  void assemble_coupled_jacobian();
+  const BlockSparseMatrix& system_matrix() const {
+    return settings_.turbulence_coupled ? jac_coupled_ : jac_;
+  }
   void set_freestream_nu_tilde();
   State residual_norm() const;
   // y = (V/dt + dR/du) x of the current residual, see SolverSettings::matrix_free
@@ -229,6 +250,12 @@ class FlowSolver {
   std::vector<State> u_, w_, res_, phi_, edge_flux_;
   std::vector<std::array<double, 8>> grad_;
   std::vector<double> nu_tilde_, eddy_viscosity_, wall_distance_;
+  std::vector<double> sa_res_, sa_diag_, sa_offdiag_;
+  std::vector<double> sa_nu_, sa_diffusivity_;  // scratch of turbulence_residual()
+  // Scale of the nu_tilde rows in the coupled system: the reference density, so that the row
+  // reads as the transport of rho nu_tilde beside the mass, momentum and energy rows.
+  double sa_row_scale_ = 1.0;
+  BlockSparseMatrix jac_coupled_;
   std::vector<double> spectral_radius_;  // sum over faces of (|V.n| + c|n|) per node
   BlockSparseMatrix jac_;
   BlockIlu0 ilu_;
