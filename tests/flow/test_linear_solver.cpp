@@ -45,6 +45,18 @@ TEST_P(LinearSolverBlocks, GmresWithBlockIluSolvesAConvectionLikeSystem) {
       EXPECT_NEAR(b[nb * i + r], s, 1e-13);
     }
   }
+  // the product restricted to some rows (the assembled rows of the matrix-free operator)
+  std::vector<double> y_rows(b.size(), -7.0);
+  a.multiply_rows(x_true, y_rows, {3, 100, 199});
+  for (int i = 0; i < n; ++i) {
+    const bool listed = i == 3 || i == 100 || i == 199;
+    for (int r = 0; r < nb; ++r) {
+      if (listed)
+        EXPECT_DOUBLE_EQ(y_rows[nb * i + r], b[nb * i + r]);
+      else
+        EXPECT_EQ(y_rows[nb * i + r], -7.0);
+    }
+  }
   for (int partitions : {1, 2}) {
     BlockIlu0 ilu;
     ilu.factorize(a, partitions);

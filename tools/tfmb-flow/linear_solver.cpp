@@ -115,6 +115,24 @@ void multiply_fixed(const BlockSparseMatrix& m, const std::vector<double>& x,
 }
 
 template <int B>
+void multiply_rows_fixed(const BlockSparseMatrix& m, const std::vector<double>& x,
+                         std::vector<double>& y, const std::vector<int>& rows) {
+  for (int i : rows) {
+    double acc[B] = {};
+    for (int p = m.row_ptr[i]; p < m.row_ptr[i + 1]; ++p) {
+      const double* a = m.block(p);
+      const double* xc = x.data() + B * static_cast<std::size_t>(m.col[p]);
+      for (int r = 0; r < B; ++r) {
+        for (int c = 0; c < B; ++c)
+          acc[r] += a[B * r + c] * xc[c];
+      }
+    }
+    for (int r = 0; r < B; ++r)
+      y[B * static_cast<std::size_t>(i) + r] = acc[r];
+  }
+}
+
+template <int B>
 void factorize_fixed(BlockSparseMatrix& lu, std::vector<int>& pos_of_col, int partitions) {
   const int n = lu.num_rows;
   // Each partition only reads and writes rows and columns of its own range, so the partitions
@@ -236,6 +254,11 @@ void BlockSparseMatrix::set_zero() {
 void BlockSparseMatrix::multiply(const std::vector<double>& x, std::vector<double>& y) const {
   y.resize(block_size * static_cast<std::size_t>(num_rows));
   dispatch(block_size, [&](auto b) { multiply_fixed<decltype(b)::value>(*this, x, y); });
+}
+
+void BlockSparseMatrix::multiply_rows(const std::vector<double>& x, std::vector<double>& y,
+                                      const std::vector<int>& rows) const {
+  dispatch(block_size, [&](auto b) { multiply_rows_fixed<decltype(b)::value>(*this, x, y, rows); });
 }
 
 BlockSparseMatrix make_pattern(int n, const std::vector<std::array<int, 2>>& edges,

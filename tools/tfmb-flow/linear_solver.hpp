@@ -28,6 +28,9 @@ struct BlockSparseMatrix {
   int find(int row, int column) const;  // position or -1
   void set_zero();
   void multiply(const std::vector<double>& x, std::vector<double>& y) const;  // y = A x
+  // y_i = (A x)_i for the listed rows only (y sized by the caller; other rows untouched)
+  void multiply_rows(const std::vector<double>& x, std::vector<double>& y,
+                     const std::vector<int>& rows) const;
 };
 
 // Pattern of a node graph given by its edges: diagonal plus both off-diagonals per edge.

@@ -182,6 +182,10 @@ FlowSolver::FlowSolver(const Mesh& mesh, Geometry geometry, const PerfectGas& ga
     }
   }
   const int n = dual_.num_nodes;
+  for (int i = 0; i < n; ++i) {
+    if (fixed_node_[i] || wall_node_bc_[i] >= 0)
+      assembled_rows_.push_back(i);
+  }
   u_.assign(n, State{});
   w_.assign(n, State{});
   res_.assign(n, State{});
@@ -837,7 +841,9 @@ LinearOperator FlowSolver::matrix_free_operator(const std::vector<double>& diag_
   }
   return [this, n, nb, coupled, base_u, base_res, base_nu, base_sa_res, nu_scale, nu_weight,
           u_norm, &diag_scale](const std::vector<double>& x, std::vector<double>& y) {
-    system_matrix().multiply(x, y);
+    // the assembled rows are needed only where they replace the residual difference
+    y.resize(x.size());
+    system_matrix().multiply_rows(x, y, assembled_rows_);
     double x_norm2 = 0.0;
     for (int i = 0; i < n; ++i) {
       const double* xi = x.data() + nb * static_cast<std::size_t>(i);
@@ -846,8 +852,10 @@ LinearOperator FlowSolver::matrix_free_operator(const std::vector<double>& diag_
         x_norm2 += nu_weight * nu_weight * xi[4] * xi[4];
     }
     const double x_norm = std::sqrt(x_norm2);
-    if (x_norm == 0.0)
+    if (x_norm == 0.0) {
+      system_matrix().multiply(x, y);
       return;
+    }
     // relative perturbation ~1e-7: half the digits for the difference, half for its accuracy
     // (Knoll and Keyes 2004, eq. 11, with the state norm as the scale)
     double eps = 1e-7 * std::max(u_norm, 1.0) / x_norm;

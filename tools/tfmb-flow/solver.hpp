@@ -246,6 +246,7 @@ class FlowSolver {
   // marks free nodes via fixed_node_).
   std::vector<char> fixed_node_;
   std::vector<State> fixed_u_;
+  std::vector<int> assembled_rows_;  // nodes whose rows of the matrix-free operator are assembled
 
   std::vector<State> u_, w_, res_, phi_, edge_flux_;
   std::vector<std::array<double, 8>> grad_;
