@@ -122,9 +122,11 @@ void multiply_rows_fixed(const BlockSparseMatrix& m, const std::vector<double>& 
     for (int p = m.row_ptr[i]; p < m.row_ptr[i + 1]; ++p) {
       const double* a = m.block(p);
       const double* xc = x.data() + B * static_cast<std::size_t>(m.col[p]);
-      for (int r = 0; r < B; ++r) {
+      for (int r = 0; r < B; ++r) {  // the summation order of multiply_fixed
+        double s = 0.0;
         for (int c = 0; c < B; ++c)
-          acc[r] += a[B * r + c] * xc[c];
+          s += a[B * r + c] * xc[c];
+        acc[r] += s;
       }
     }
     for (int r = 0; r < B; ++r)
