@@ -25,9 +25,11 @@ TEST_P(LinearSolverBlocks, GmresWithBlockIluSolvesAConvectionLikeSystem) {
   for (int i = 0; i < n; ++i) {
     for (int p = a.row_ptr[i]; p < a.row_ptr[i + 1]; ++p) {
       double* b = a.block(p);
-      for (int k = 0; k < nb * nb; ++k) b[k] = 0.3 * u(rng);
+      for (int k = 0; k < nb * nb; ++k)
+        b[k] = 0.3 * u(rng);
       if (a.col[p] == i) {
-        for (int k = 0; k < nb; ++k) b[(nb + 1) * k] += 4.0;
+        for (int k = 0; k < nb; ++k)
+          b[(nb + 1) * k] += 4.0;
       }
     }
   }
@@ -40,7 +42,8 @@ TEST_P(LinearSolverBlocks, GmresWithBlockIluSolvesAConvectionLikeSystem) {
     for (int r = 0; r < nb; ++r) {
       double s = 0.0;
       for (int p = a.row_ptr[i]; p < a.row_ptr[i + 1]; ++p) {
-        for (int c = 0; c < nb; ++c) s += a.block(p)[nb * r + c] * x_true[nb * a.col[p] + c];
+        for (int c = 0; c < nb; ++c)
+          s += a.block(p)[nb * r + c] * x_true[nb * a.col[p] + c];
       }
       EXPECT_NEAR(b[nb * i + r], s, 1e-13);
     }
@@ -64,7 +67,8 @@ TEST_P(LinearSolverBlocks, GmresWithBlockIluSolvesAConvectionLikeSystem) {
     const GmresResult r = gmres(a, ilu, b, x, 1e-12, 30, 200);
     EXPECT_LE(r.relative_residual, 1e-12);
     EXPECT_LT(r.iterations, 40);
-    for (int k = 0; k < nb * n; ++k) EXPECT_NEAR(x[k], x_true[k], 1e-10);
+    for (int k = 0; k < nb * n; ++k)
+      EXPECT_NEAR(x[k], x_true[k], 1e-10);
   }
 }
 
@@ -76,14 +80,17 @@ TEST(LinearSolver, UnsupportedBlockSizeIsRefused) {
 
 TEST(LinearSolver, BlockInverse5) {
   double a[25];
-  for (int k = 0; k < 25; ++k) a[k] = std::sin(1.0 + 3.0 * k);
-  for (int k = 0; k < 5; ++k) a[6 * k] += 3.0;
+  for (int k = 0; k < 25; ++k)
+    a[k] = std::sin(1.0 + 3.0 * k);
+  for (int k = 0; k < 5; ++k)
+    a[6 * k] += 3.0;
   double inv[25];
   ASSERT_TRUE(invert_block(a, inv, 5));
   for (int i = 0; i < 5; ++i) {
     for (int j = 0; j < 5; ++j) {
       double s = 0.0;
-      for (int k = 0; k < 5; ++k) s += a[5 * i + k] * inv[5 * k + j];
+      for (int k = 0; k < 5; ++k)
+        s += a[5 * i + k] * inv[5 * k + j];
       EXPECT_NEAR(s, i == j ? 1.0 : 0.0, 1e-13);
     }
   }

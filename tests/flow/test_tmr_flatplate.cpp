@@ -125,25 +125,32 @@ TEST(TmrFlatPlate, SpalartAllmarasSkinFrictionAndDrag) {
 // froze the limiter in a transient) gave 0.25.
 TEST(TmrFlatPlate, CoupledSpalartAllmarasGivesTheSegregatedSolution) {
   for (const char* tool : {"tfmb-input", "tfmb-mesh", "tfmb-flow"}) {
-    if (!fs::exists(bin_dir / tool)) GTEST_SKIP() << tool << " not built";
+    if (!fs::exists(bin_dir / tool))
+      GTEST_SKIP() << tool << " not built";
   }
-  const fs::path dir = fs::temp_directory_path() / ("tfmb_tmr_coupled_" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("tfmb_tmr_coupled_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const std::string quiet = " -q 2>>" + (dir / "log.txt").string();
-  ASSERT_EQ(run((bin_dir / "tfmb-input").string() + " " + (source_dir / "cases/tmr-flatplate/case.toml").string() +
+  ASSERT_EQ(run((bin_dir / "tfmb-input").string() + " " +
+                (source_dir / "cases/tmr-flatplate/case.toml").string() +
                 " --set mesh.cells_upstream=12 --set mesh.cells_along=56 --set mesh.cells_across=48"
                 " --set flow.first_cell_height=4e-6 -o " +
                 (dir / "model.h5").string() + quiet),
             0);
   ASSERT_EQ(run((bin_dir / "tfmb-mesh").string() + " flow " + (dir / "model.h5").string() + " -o " +
-                (dir / "flowmesh.h5").string() + " 2>>" + (dir / "log.txt").string()), 0);
-  const std::string common = (bin_dir / "tfmb-flow").string() + " " + (dir / "flowmesh.h5").string() +
-                             " --p0 117686.646 --T0 302.4 --ambient-pressure 114450 --ambient-temperature 300"
-                             " --freestream-mach 0.2 --model sa --threads 1 --max-iterations 400"
-                             " --heat-transfer-dt 0 --limiter-coefficient 100";
-  ASSERT_EQ(run(common + " --turbulence-coupling segregated -o " + (dir / "segregated.h5").string() + quiet), 0);
-  ASSERT_EQ(run(common + " --matrix-free true --turbulence-coupling coupled -o " + (dir / "coupled.h5").string() +
-                quiet),
+                (dir / "flowmesh.h5").string() + " 2>>" + (dir / "log.txt").string()),
+            0);
+  const std::string common =
+      (bin_dir / "tfmb-flow").string() + " " + (dir / "flowmesh.h5").string() +
+      " --p0 117686.646 --T0 302.4 --ambient-pressure 114450 --ambient-temperature 300"
+      " --freestream-mach 0.2 --model sa --threads 1 --max-iterations 400"
+      " --heat-transfer-dt 0 --limiter-coefficient 100";
+  ASSERT_EQ(run(common + " --turbulence-coupling segregated -o " +
+                (dir / "segregated.h5").string() + quiet),
+            0);
+  ASSERT_EQ(run(common + " --matrix-free true --turbulence-coupling coupled -o " +
+                (dir / "coupled.h5").string() + quiet),
             0);
   const tfmb::h5::Reader segregated(dir / "segregated.h5");
   const tfmb::h5::Reader coupled(dir / "coupled.h5");
@@ -157,7 +164,8 @@ TEST(TmrFlatPlate, CoupledSpalartAllmarasGivesTheSegregatedSolution) {
   ASSERT_EQ(nu_s.size(), nu_c.size());
   double tau_max = 0.0, tau_diff = 0.0, nu_max = 0.0, nu_diff = 0.0;
   for (std::size_t k = 0; k < tau_s.size(); ++k) {
-    if (x[k] < 0.05) continue;  // the leading-edge singularity
+    if (x[k] < 0.05)
+      continue;  // the leading-edge singularity
     tau_max = std::max(tau_max, std::abs(tau_s[k]));
     tau_diff = std::max(tau_diff, std::abs(tau_c[k] - tau_s[k]));
   }
@@ -165,11 +173,14 @@ TEST(TmrFlatPlate, CoupledSpalartAllmarasGivesTheSegregatedSolution) {
     nu_max = std::max(nu_max, std::abs(nu_s[k]));
     nu_diff = std::max(nu_diff, std::abs(nu_c[k] - nu_s[k]));
   }
-  const auto its = [](const tfmb::h5::Reader& f) { return f.attr_i64("/convergence", "iterations"); };
-  std::printf("TMR flat plate 69x49, SA: segregated %lld iterations, coupled matrix-free %lld; "
-              "largest difference of wall shear %.2e, of nu_tilde %.2e (relative to the largest)\n",
-              static_cast<long long>(its(segregated)), static_cast<long long>(its(coupled)), tau_diff / tau_max,
-              nu_diff / nu_max);
+  const auto its = [](const tfmb::h5::Reader& f) {
+    return f.attr_i64("/convergence", "iterations");
+  };
+  std::printf(
+      "TMR flat plate 69x49, SA: segregated %lld iterations, coupled matrix-free %lld; "
+      "largest difference of wall shear %.2e, of nu_tilde %.2e (relative to the largest)\n",
+      static_cast<long long>(its(segregated)), static_cast<long long>(its(coupled)),
+      tau_diff / tau_max, nu_diff / nu_max);
   EXPECT_LT(tau_diff / tau_max, 1e-5);
   EXPECT_LT(nu_diff / nu_max, 1e-5);
   fs::remove_all(dir);

@@ -183,8 +183,8 @@ void factorize_fixed(BlockSparseMatrix& lu, std::vector<int>& pos_of_col, int pa
 }
 
 template <int B>
-void ilu_apply_fixed(const BlockSparseMatrix& lu, const std::vector<float>& factors,
-                     int partitions, const std::vector<double>& b, std::vector<double>& x) {
+void ilu_apply_fixed(const BlockSparseMatrix& lu, const std::vector<float>& factors, int partitions,
+                     const std::vector<double>& b, std::vector<double>& x) {
   const int n = lu.num_rows;
   const float* f = factors.data();
   constexpr std::size_t kEntries = B * B;
@@ -208,8 +208,8 @@ void ilu_apply_fixed(const BlockSparseMatrix& lu, const std::vector<float>& fact
       for (int p = lu.row_ptr[i]; p < lu.diag_pos[i]; ++p) {
         const int c = lu.col[p];
         if (c >= lo)
-          sub(f + kEntries * static_cast<std::size_t>(p), x.data() + B * static_cast<std::size_t>(c),
-              xi);
+          sub(f + kEntries * static_cast<std::size_t>(p),
+              x.data() + B * static_cast<std::size_t>(c), xi);
       }
     }
     for (int i = hi - 1; i >= lo; --i) {
@@ -217,8 +217,8 @@ void ilu_apply_fixed(const BlockSparseMatrix& lu, const std::vector<float>& fact
       for (int p = lu.diag_pos[i] + 1; p < lu.row_ptr[i + 1]; ++p) {
         const int c = lu.col[p];
         if (c < hi)
-          sub(f + kEntries * static_cast<std::size_t>(p), x.data() + B * static_cast<std::size_t>(c),
-              xi);
+          sub(f + kEntries * static_cast<std::size_t>(p),
+              x.data() + B * static_cast<std::size_t>(c), xi);
       }
       const float* d = f + kEntries * static_cast<std::size_t>(lu.diag_pos[i]);
       double r[B];

@@ -839,8 +839,8 @@ LinearOperator FlowSolver::matrix_free_operator(const std::vector<double>& diag_
     }
     nu_weight = u_norm / std::max(std::sqrt(nu_norm2), 1e-300);
   }
-  return [this, n, nb, coupled, base_u, base_res, base_nu, base_sa_res, nu_scale, nu_weight,
-          u_norm, &diag_scale](const std::vector<double>& x, std::vector<double>& y) {
+  return [this, n, nb, coupled, base_u, base_res, base_nu, base_sa_res, nu_scale, nu_weight, u_norm,
+          &diag_scale](const std::vector<double>& x, std::vector<double>& y) {
     // the assembled rows are needed only where they replace the residual difference
     y.resize(x.size());
     system_matrix().multiply_rows(x, y, assembled_rows_);
@@ -893,8 +893,8 @@ LinearOperator FlowSolver::matrix_free_operator(const std::vector<double>& diag_
     for (int i = 0; i < n; ++i) {
       const bool wall = wall_node_bc_[i] >= 0;
       if (coupled && !wall) {
-        y[nb * i + 4] = sa_row_scale_ * (diag_scale[i] * x[nb * i + 4] +
-                                         (sa_res_[i] - (*base_sa_res)[i]) / eps);
+        y[nb * i + 4] = sa_row_scale_ *
+                        (diag_scale[i] * x[nb * i + 4] + (sa_res_[i] - (*base_sa_res)[i]) / eps);
       }
       if (fixed_node_[i])
         continue;
@@ -1115,8 +1115,8 @@ SolveReport FlowSolver::solve() {
                   settings_.gmres_max_iterations, gmres_workspace_);
       compute_residual(false);  // back to the state's own residual, gradients and viscosities
     } else {
-      lin = gmres(system_matrix(), ilu_, rhs, du, settings_.linear_tolerance, settings_.gmres_restart,
-                  settings_.gmres_max_iterations, gmres_workspace_);
+      lin = gmres(system_matrix(), ilu_, rhs, du, settings_.linear_tolerance,
+                  settings_.gmres_restart, settings_.gmres_max_iterations, gmres_workspace_);
     }
     rec.linear_iterations = lin.iterations;
     rec.linear_residual = lin.relative_residual;
