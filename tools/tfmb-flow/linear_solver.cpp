@@ -92,46 +92,39 @@ decltype(auto) dispatch(int block_size, F&& f) {
   }
 }
 
+// y_i = (A x)_i for block row i
+template <int B>
+inline void multiply_row(const BlockSparseMatrix& m, const std::vector<double>& x,
+                         std::vector<double>& y, int i) {
+  double acc[B] = {};
+  for (int p = m.row_ptr[i]; p < m.row_ptr[i + 1]; ++p) {
+    const double* a = m.block(p);
+    const double* xc = x.data() + B * static_cast<std::size_t>(m.col[p]);
+    for (int r = 0; r < B; ++r) {
+      double s = 0.0;
+      for (int c = 0; c < B; ++c)
+        s += a[B * r + c] * xc[c];
+      acc[r] += s;
+    }
+  }
+  for (int r = 0; r < B; ++r)
+    y[B * static_cast<std::size_t>(i) + r] = acc[r];
+}
+
 template <int B>
 void multiply_fixed(const BlockSparseMatrix& m, const std::vector<double>& x,
                     std::vector<double>& y) {
   const int n = m.num_rows;
 #pragma omp parallel for schedule(static) if (n > 1000)
-  for (int i = 0; i < n; ++i) {
-    double acc[B] = {};
-    for (int p = m.row_ptr[i]; p < m.row_ptr[i + 1]; ++p) {
-      const double* a = m.block(p);
-      const double* xc = x.data() + B * static_cast<std::size_t>(m.col[p]);
-      for (int r = 0; r < B; ++r) {
-        double s = 0.0;
-        for (int c = 0; c < B; ++c)
-          s += a[B * r + c] * xc[c];
-        acc[r] += s;
-      }
-    }
-    for (int r = 0; r < B; ++r)
-      y[B * static_cast<std::size_t>(i) + r] = acc[r];
-  }
+  for (int i = 0; i < n; ++i)
+    multiply_row<B>(m, x, y, i);
 }
 
 template <int B>
 void multiply_rows_fixed(const BlockSparseMatrix& m, const std::vector<double>& x,
                          std::vector<double>& y, const std::vector<int>& rows) {
-  for (int i : rows) {
-    double acc[B] = {};
-    for (int p = m.row_ptr[i]; p < m.row_ptr[i + 1]; ++p) {
-      const double* a = m.block(p);
-      const double* xc = x.data() + B * static_cast<std::size_t>(m.col[p]);
-      for (int r = 0; r < B; ++r) {  // the summation order of multiply_fixed
-        double s = 0.0;
-        for (int c = 0; c < B; ++c)
-          s += a[B * r + c] * xc[c];
-        acc[r] += s;
-      }
-    }
-    for (int r = 0; r < B; ++r)
-      y[B * static_cast<std::size_t>(i) + r] = acc[r];
-  }
+  for (int i : rows)
+    multiply_row<B>(m, x, y, i);
 }
 
 template <int B>
