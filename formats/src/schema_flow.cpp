@@ -4,7 +4,7 @@
 namespace tfmb::formats::detail {
 
 Schema flow_schema() {
-  Schema s{"flow", "tfmb/flow", 1, 1,
+  Schema s{"flow", "tfmb/flow", 1, 2,
            "flow solution: node fields, wall traces, integrated thrust and mass flow", true, {}, {}};
   add_root(s, true);
   add_mesh(s);
@@ -29,6 +29,10 @@ Schema flow_schema() {
                            "q_w / (T_aw - T_w) of an isothermal probe run below T_aw (viscous, adiabatic walls)", false));
   s.datasets.push_back(f64("/walls/*/adiabatic_wall_temperature", {"n"}, "K",
                            "wall temperature of the adiabatic viscous solution (recovery temperature)", false));
+  s.datasets.push_back(f64("/walls/*/pressure_rms", {"n"}, "Pa",
+                           "time-accurate runs: RMS of the wall pressure fluctuation over the "
+                           "statistics window (the other trace datasets are then time means)",
+                           false));
   s.attributes.push_back(nattr("/integrals", "mass_flow", "kg/(s m)", "per unit depth (planar)"));
   s.attributes.push_back(nattr("/integrals", "thrust_x", "N/m", "per unit depth (planar)"));
   s.attributes.push_back(nattr("/integrals", "thrust_y", "N/m", "per unit depth (planar)"));
@@ -49,6 +53,28 @@ Schema flow_schema() {
                                "largest density residual of the run, the reference of the drop; a "
                                "restart continues from it",
                                0.0, std::nullopt, false));
+  s.attributes.push_back(nattr("/convergence", "time_average", "1",
+                               "1: a time-accurate run; fields and wall traces are time means over "
+                               "the statistics window, integrals those of the mean state",
+                               0.0, 1.0, false, AttrType::int64));
+  s.attributes.push_back(nattr("/convergence", "time_step", "s", "physical time step", 0.0,
+                               std::nullopt, false));
+  s.attributes.push_back(nattr("/convergence", "time_steps", "1", "physical time steps run", 1.0,
+                               std::nullopt, false, AttrType::int64));
+  s.attributes.push_back(nattr("/convergence", "statistics_start", "1",
+                               "first step (1-based) in the time averages", 1.0, std::nullopt,
+                               false, AttrType::int64));
+  s.attributes.push_back(nattr("/convergence", "averaged_steps", "1", "steps in the time averages",
+                               1.0, std::nullopt, false, AttrType::int64));
+  s.attributes.push_back(nattr("/convergence", "mean_change", "1",
+                               "largest difference of the wall pressure means of the statistics "
+                               "window's two halves, relative to the stagnation pressure",
+                               0.0, std::nullopt, false));
+  s.datasets.push_back(f64("/convergence/time_history", {"S", "5"}, "1",
+                           "time-accurate runs, per physical step: time [s], inner iterations, "
+                           "inner residual drop reached, wall pressure force x and y [N/m planar, "
+                           "N/rad axisymmetric]",
+                           false));
   s.datasets.push_back(f64("/convergence/residual_history", {"I", "*"}, "1",
                            "per iteration: L2 residual of each equation relative to its largest value in the run"));
   add_provenance(s);

@@ -233,3 +233,52 @@ TEST(FlowRun, FirstOrderStartThenSecondOrder) {
   EXPECT_NEAR(r.thrust_x, r2.thrust_x, 1e-4 * std::abs(r2.thrust_x));
   std::filesystem::remove_all(dir);
 }
+
+TEST(FlowRun, TimeAccurateRunOfASteadyFlowWritesItsMean) {
+  // a converged steady nozzle flow continued time-accurately stays where it is: the mean is the
+  // steady solution, the wall-pressure RMS vanishes, and flow.h5 records the time average
+  const auto dir = temp_dir();
+  write_flowmesh(dir / "flowmesh.h5", nparc::make_mesh(61, 16));
+  std::ostringstream log_text;
+  const Logger log("tfmb-flow", Verbosity::normal, log_text);
+  RunOptions steady = nozzle_options(dir);
+  steady.settings.residual_drop = 1e-10;
+  ASSERT_TRUE(run(steady, log).report.converged);
+  RunOptions o = nozzle_options(dir);
+  o.restart_file = steady.output;
+  o.output = dir / "flow-mean.h5";
+  o.time.time_step = 1e-5;  // about 10 acoustic transit times of a cell
+  o.time.time_steps = 8;
+  o.time.statistics_start = 3;
+  o.time.inner_residual_drop = 1e-6;
+  const RunResult r = run(o, log);
+  ASSERT_TRUE(r.time_average.has_value());
+  EXPECT_TRUE(r.report.converged);
+  EXPECT_EQ(r.time_average->averaged_steps, 6);
+  EXPECT_LT(r.time_average->mean_change, 1e-6);
+  const h5::Reader a = formats::open_checked(steady.output, "flow");
+  const h5::Reader b = formats::open_checked(o.output, "flow");  // the 1.2 layout
+  EXPECT_EQ(b.attr_i64("/convergence", "time_average"), 1);
+  EXPECT_EQ(b.attr_i64("/convergence", "averaged_steps"), 6);
+  EXPECT_EQ(b.read_matrix("/convergence/time_history").rows(), 8);
+  EXPECT_EQ(b.read_matrix("/convergence/residual_history").rows(), 8);
+  const auto pa = a.read_vector("/walls/wall/pressure");
+  const auto pb = b.read_vector("/walls/wall/pressure");
+  const auto rms = b.read_vector("/walls/wall/pressure_rms");
+  ASSERT_EQ(pa.size(), pb.size());
+  double worst = 0.0, worst_rms = 0.0;
+  for (std::size_t k = 0; k < pa.size(); ++k) {
+    worst = std::max(worst, std::abs(pa[k] - pb[k]) / nparc::kP0);
+    worst_rms = std::max(worst_rms, rms[k] / nparc::kP0);
+  }
+  std::printf("time-accurate continuation of the steady nozzle: mean within %.2e p0 of the steady "
+              "wall pressure, RMS %.2e p0\n",
+              worst, worst_rms);
+  EXPECT_LT(worst, 1e-8);
+  EXPECT_LT(worst_rms, 1e-9);
+
+  RunOptions bad = o;
+  bad.time.statistics_start = 9;  // after the last step
+  EXPECT_THROW(run(bad, log), BadInput);
+  std::filesystem::remove_all(dir);
+}

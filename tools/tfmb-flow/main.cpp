@@ -5,6 +5,8 @@
 //   tfmb-flow flowmesh.h5 --p0 5.5e5 --T0 294 --ambient-pressure 101330 -o flow.h5
 //   tfmb-flow flowmesh.h5 --p0 5.5e5 --T0 294 --restart flow_prev.h5 -o flow.h5
 //   tfmb-flow flowmesh.h5 --p0 2e5 --T0 300 --model laminar --wall-temperature 400 -o flow.h5
+//   tfmb-flow flowmesh.h5 --p0 2.44e5 --T0 294 --model sa --restart flow.h5 --time-step 2e-6
+//     --time-steps 400 --statistics-start 201 -o flow_mean.h5      (time-accurate, averaged)
 #include <iostream>
 
 #include "run.hpp"
@@ -91,6 +93,32 @@ int main(int argc, char** argv) {
                  "viscosity lagged) or coupled (mean flow and nu_tilde in one Newton step, 5x5 "
                  "blocks; with --matrix-free true the Krylov operator holds every cross term)")
       ->check(CLI::IsMember({"segregated", "coupled"}))
+      ->capture_default_str();
+  app.add_option("--time-step", o.time.time_step,
+                 "[s] time-accurate run (dual time stepping, BDF2) with this physical time step "
+                 "from the restart or initial state; flow.h5 then holds time averages and the "
+                 "wall pressure RMS (0: steady)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  app.add_option("--time-steps", o.time.time_steps, "number of physical time steps")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  app.add_option("--statistics-start", o.time.statistics_start,
+                 "first physical step (1-based) that enters the time averages")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--inner-iterations", o.time.inner_iterations,
+                 "pseudo-time iterations per physical time step (limit)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--inner-residual-drop", o.time.inner_residual_drop,
+                 "[-] a physical step is converged when its density residual fell by this factor")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--statistics-tolerance", o.time.statistics_tolerance,
+                 "[-] the time average counts as converged when the wall pressure means of the "
+                 "window's two halves differ by less than this, relative to p0")
+      ->check(CLI::PositiveNumber)
       ->capture_default_str();
   app.add_option("--entropy-fix", o.settings.entropy_fix,
                  "[-] Harten entropy-fix width as a fraction of the sound speed")

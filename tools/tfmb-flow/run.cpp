@@ -230,7 +230,43 @@ RunResult run(const RunOptions& o, const Logger& log) {
            (lm.geometry == Geometry::axisymmetric ? ", axisymmetric" : ", planar"));
 
   RunResult result;
-  if (o.first_order_start && settings.order >= 2 && !o.restart_file) {
+  const bool time_accurate = o.time.time_step > 0.0;
+  if (time_accurate) {
+    TimeAccurateSettings time = o.time;
+    if (time.time_steps < 1 || time.statistics_start > time.time_steps) {
+      throw BadInput("--time-step needs --time-steps >= 1 and --statistics-start (" +
+                     std::to_string(time.statistics_start) + ") <= --time-steps (" +
+                     std::to_string(time.time_steps) + ")");
+    }
+    time.reference_pressure = p_ref;
+    time.print_every = settings.print_every;
+    time.cfl_start = settings.cfl_start;
+    time.cfl_max = settings.cfl_max;
+    result.time_average = run_time_accurate(solver, time, wall_curves);
+    const TimeAccurateResult& ta = *result.time_average;
+    log.info("time-accurate: " + std::to_string(time.time_steps) + " steps of " +
+             num(time.time_step) + " s (" + std::to_string(ta.iterations) +
+             " inner iterations, " + std::to_string(ta.unconverged_steps) +
+             " steps short of the inner drop); mean over " + std::to_string(ta.averaged_steps) +
+             " steps, wall pressure means of the window's halves differ by " +
+             num(ta.mean_change) + " p0");
+    // the report of a time-accurate run: one row per physical step
+    SolveReport& r = result.report;
+    r.converged = ta.mean_converged;
+    r.iterations = static_cast<int>(ta.iterations);
+    r.linear_iterations = ta.linear_iterations;
+    r.wall_time = ta.wall_time;
+    for (std::size_t k = 0; k < ta.history.size(); ++k) {
+      IterationRecord rec;
+      rec.iteration = static_cast<int>(k) + 1;
+      rec.residual = ta.history[k].residual;
+      r.history.push_back(rec);
+    }
+    // integrals, eddy viscosity and the heat-transfer probe start from the time-mean state
+    solver.set_primitive(ta.mean_primitive);
+    if (turbulent)
+      solver.set_nu_tilde(ta.mean_nu_tilde);
+  } else if (o.first_order_start && settings.order >= 2 && !o.restart_file) {
     SolverSettings first_settings = settings;
     first_settings.order = 1;
     SolveReport first;
@@ -314,8 +350,12 @@ RunResult run(const RunOptions& o, const Logger& log) {
   // heat-transfer probe changes the state.
   const auto w_solver = solver.primitive();
   std::vector<WallTrace> traces;
-  for (int b : wall_curves)
-    traces.push_back(solver.wall_trace(b));
+  if (result.time_average) {
+    traces = result.time_average->mean_traces;
+  } else {
+    for (int b : wall_curves)
+      traces.push_back(solver.wall_trace(b));
+  }
   const std::vector<double> nu_tilde = turbulent ? solver.nu_tilde() : std::vector<double>{};
   const std::vector<double> eddy_viscosity =
       turbulent ? solver.eddy_viscosity() : std::vector<double>{};
@@ -393,6 +433,10 @@ RunResult run(const RunOptions& o, const Logger& log) {
       w.write(g + "/temperature", t.temperature, "K", "wall temperature");
       w.write(g + "/wall_shear", t.shear_stress, "Pa", "along the direction of increasing s");
       w.write(g + "/heat_flux", t.heat_flux, "W/m^2", "into the wall");
+      if (result.time_average) {
+        w.write(g + "/pressure_rms", result.time_average->pressure_rms[c], "Pa",
+                "root mean square of the wall pressure fluctuation over the statistics window");
+      }
       if (!heat_transfer.empty()) {
         w.write(g + "/adiabatic_wall_temperature", t.temperature, "K",
                 "wall temperature of the adiabatic solution");
@@ -427,9 +471,34 @@ RunResult run(const RunOptions& o, const Logger& log) {
                                                                    : " (met: residual)")
                                   : "");
     }
+    if (result.time_average) {
+      criterion = "time average over steps " + std::to_string(o.time.statistics_start) + ".." +
+                  std::to_string(o.time.time_steps) +
+                  ": wall pressure means of the window's two halves within " +
+                  num(o.time.statistics_tolerance) + " of " + num(settings.reference_state[3]) +
+                  " Pa";
+    }
     w.set_attr("/convergence", "criterion", criterion);
     w.set_attr("/convergence", "iterations", static_cast<std::int64_t>(rep.iterations));
     w.set_attr("/convergence", "residual_reference", rep.residual_reference);
+    if (result.time_average) {
+      const TimeAccurateResult& ta = *result.time_average;
+      w.set_attr("/convergence", "time_average", static_cast<std::int64_t>(1));
+      w.set_attr("/convergence", "time_step", o.time.time_step);
+      w.set_attr("/convergence", "time_steps", static_cast<std::int64_t>(o.time.time_steps));
+      w.set_attr("/convergence", "statistics_start",
+                 static_cast<std::int64_t>(o.time.statistics_start));
+      w.set_attr("/convergence", "averaged_steps", static_cast<std::int64_t>(ta.averaged_steps));
+      w.set_attr("/convergence", "mean_change", ta.mean_change);
+      std::vector<double> th;
+      for (const auto& rec : ta.history) {
+        th.insert(th.end(), {rec.time, static_cast<double>(rec.inner_iterations),
+                             rec.inner_residual_drop, rec.wall_force.x, rec.wall_force.y});
+      }
+      w.write_array("/convergence/time_history", th, {ta.history.size(), 5}, "1",
+                    "per physical step: time [s], inner iterations, inner residual drop reached, "
+                    "wall pressure force x and y [N/m planar, N/rad axisymmetric]");
+    }
     // Each equation's residual relative to its largest value in the run, the measure the
     // convergence criterion uses for the density: a jet started from air at rest has no density
     // residual at all in its first iteration, so the first value is no reference.
@@ -472,12 +541,20 @@ RunResult run(const RunOptions& o, const Logger& log) {
     w.commit();
   }
   formats::write_xdmf_sidecar(o.output);
-  log.summary("wrote " + o.output.string() + ": " +
-              (rep.converged ? "converged" : "NOT converged") + " in " +
-              std::to_string(rep.iterations) + " iterations (" +
+  // per unit depth (planar) or for the whole axisymmetric nozzle
+  const std::string per = lm.geometry == Geometry::axisymmetric ? "" : "/m";
+  const std::string how =
+      result.time_average
+          ? "time average over " + std::to_string(result.time_average->averaged_steps) +
+                " steps " + (rep.converged ? "converged" : "NOT converged") +
+                " (halves differ by " + num(result.time_average->mean_change) + " p0), " +
+                std::to_string(rep.iterations) + " inner iterations"
+          : std::string(rep.converged ? "converged" : "NOT converged") + " in " +
+                std::to_string(rep.iterations) + " iterations";
+  log.summary("wrote " + o.output.string() + ": " + how + " (" +
               std::to_string(rep.linear_iterations) + " linear), residual drop " +
-              num(rep.residual_drop) + ", mass flow " + num(result.mass_flow) + " kg/s, thrust " +
-              num(result.thrust_x) + " N, " + num(rep.wall_time) + " s");
+              num(rep.residual_drop) + ", mass flow " + num(result.mass_flow) + " kg/(s" + per +
+              "), thrust " + num(result.thrust_x) + " N" + per + ", " + num(rep.wall_time) + " s");
   return result;
 }
 

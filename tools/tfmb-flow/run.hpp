@@ -7,6 +7,7 @@
 #include <string>
 
 #include "solver.hpp"
+#include "time_accurate.hpp"
 #include "tfmb/common/log.hpp"
 
 namespace tfmb::flow {
@@ -36,12 +37,16 @@ struct RunOptions {
   // iteration limit), then continue at second order from that state, as a restart would.
   bool first_order_start = false;
   std::string turbulence_coupling = "segregated";  // segregated | coupled (SA)
+  // Time-accurate run (dual time stepping) when time.time_step > 0: from the restart (or the
+  // initial) state, no steady solve; flow.h5 then holds the time averages.
+  TimeAccurateSettings time;
   SolverSettings settings;
   std::string command_line;
 };
 
 struct RunResult {
   SolveReport report;
+  std::optional<TimeAccurateResult> time_average;  // time-accurate runs
   double mass_flow = 0.0;  // through the outflow boundaries (else the inflow) [kg/(s m)] or [kg/s]
   double thrust_x = 0.0;   // [N/m] or [N]
   double thrust_y = 0.0;

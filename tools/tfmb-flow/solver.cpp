@@ -379,6 +379,15 @@ void FlowSolver::turbulence_residual(bool jacobian, const std::vector<double>* d
     sa_res_[i] -= volume * (src.production - src.destruction);
     if (jacobian)
       sa_diag_[i] -= volume * src.d_source;
+    if (time_dt_ > 0.0) {
+      // physical time derivative (see begin_time_step)
+      double dnu = time_a_[0] * nu_tilde_[i] - time_a_[1] * time_nu_n_[i];
+      if (time_a_[2] != 0.0)
+        dnu += time_a_[2] * time_nu_nm1_[i];
+      sa_res_[i] += volume * dnu / time_dt_;
+      if (jacobian)
+        sa_diag_[i] += physical_time_diagonal(i);
+    }
   }
 }
 
@@ -605,8 +614,51 @@ void FlowSolver::compute_residual(bool update_limiter) {
       res_[i][2] -= source * dual_.area[i];
     }
   }
+  add_physical_time_derivative();
   if (turbulent && settings_.turbulence_coupled)
     turbulence_residual(false, nullptr);
+}
+
+void FlowSolver::begin_time_step(double dt) {
+  if (!(dt > 0.0) || !std::isfinite(dt))
+    throw std::invalid_argument("flow: physical time step must be positive");
+  const bool first = time_u_n_.empty() || dt != time_dt_;
+  time_u_nm1_ = std::move(time_u_n_);
+  time_u_n_ = u_;
+  time_nu_nm1_ = std::move(time_nu_n_);
+  time_nu_n_ = nu_tilde_;
+  time_dt_ = dt;
+  // BDF1 on the first step (and after a change of dt), BDF2 after it
+  time_a_ = first ? std::array<double, 3>{1.0, 1.0, 0.0} : std::array<double, 3>{1.5, 2.0, 0.5};
+}
+
+void FlowSolver::set_inner_iteration_control(int max_iterations, double residual_drop,
+                                             double cfl_start, int print_every) {
+  settings_.max_iterations = max_iterations;
+  settings_.residual_drop = residual_drop;
+  settings_.residual_reference = 0.0;
+  settings_.stationary_tolerance = 0.0;
+  settings_.inflow_ramp_iterations = 0;
+  settings_.cfl_start = cfl_start;
+  settings_.print_every = print_every;
+}
+
+void FlowSolver::add_physical_time_derivative() {
+  if (time_dt_ <= 0.0)
+    return;
+  const int n = dual_.num_nodes;
+  const auto [a0, a1, a2] = time_a_;
+  const bool bdf2 = a2 != 0.0;
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    const double v_dt = dual_.volume[i] / time_dt_;
+    for (int v = 0; v < 4; ++v) {
+      double du = a0 * u_[i][v] - a1 * time_u_n_[i][v];
+      if (bdf2)
+        du += a2 * time_u_nm1_[i][v];
+      res_[i][v] += v_dt * du;
+    }
+  }
 }
 
 void FlowSolver::assemble_coupled_jacobian() {
@@ -732,8 +784,9 @@ void FlowSolver::assemble_jacobian(const std::vector<double>& diag_scale) {
       for (int m = 0; m < 16; ++m)
         d[m] -= b[m];
     }
+    const double time_diagonal = diag_scale[i] + physical_time_diagonal(i);
     for (int m = 0; m < 4; ++m)
-      d[5 * m] += diag_scale[i];
+      d[5 * m] += time_diagonal;
   }
   // Boundary fluxes: forward differences in the conservative variables of the face node.
   for (const auto& face : dual_.boundary_faces) {
@@ -1249,6 +1302,7 @@ SolveReport FlowSolver::solve() {
     }
   }
   report.wall_time = std::chrono::duration<double>(clock::now() - start).count();
+  report.final_cfl = cfl;
   return report;
 }
 

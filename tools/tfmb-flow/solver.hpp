@@ -134,6 +134,7 @@ struct SolveReport {
   double residual_drop = 1.0;       // final density residual / reference density residual
   double residual_reference = 0.0;  // the reference used (RMS of residual/volume)
   double wall_time = 0.0;           // [s]
+  double final_cfl = 0.0;           // CFL number of the last iteration
   std::vector<IterationRecord> history;
 };
 
@@ -185,6 +186,18 @@ class FlowSolver {
   // h = q_w / (T_aw - T_w) (see run.cpp).
   void make_walls_isothermal(double below);
   void set_residual_reference(double reference) { settings_.residual_reference = reference; }
+  // Dual time stepping (Jameson 1991, AIAA 91-1596): from this call on, the residual holds the
+  // physical time derivative V dU/dt by the second-order backward difference
+  // (3 U - 4 U^n + U^(n-1)) / (2 dt), the first step by the first-order one (U - U^n) / dt,
+  // with U^n the current state; solve() then converges one physical step in pseudo time.
+  // Call once per physical step, after the previous one has converged.
+  void begin_time_step(double dt);
+  // Iteration control of the pseudo-time (inner) solve of a physical time step: iteration
+  // limit, density residual drop relative to the step's largest residual, starting CFL and
+  // progress lines; no stationarity criterion, no inflow ramp.
+  void set_inner_iteration_control(int max_iterations, double residual_drop, double cfl_start,
+                                   int print_every);
+  double time_step() const { return time_dt_; }
   void set_inflow_ramp(int iterations) { settings_.inflow_ramp_iterations = iterations; }
 
   // Residual R(U) (flux balance, positive = net outflow) for the current state; per node.
@@ -198,6 +211,11 @@ class FlowSolver {
  private:
   void compute_residual(bool update_limiter);
   void assemble_jacobian(const std::vector<double>& diag_scale);
+  // V a0 / dt of the physical time derivative at node i (0 for a steady solve)
+  double physical_time_diagonal(int i) const {
+    return time_dt_ > 0.0 ? dual_.volume[i] * time_a_[0] / time_dt_ : 0.0;
+  }
+  void add_physical_time_derivative();
   void apply_strong_conditions(std::vector<State>& u) const;
   bool physical(const std::vector<State>& u) const;
   void update_eddy_viscosity();
@@ -263,6 +281,12 @@ class FlowSolver {
   ScalarIlu0 sa_ilu_;
   GmresWorkspace gmres_workspace_;
   bool limiter_frozen_ = false;
+  // dual time stepping: dt, the backward-difference coefficients a0 U - a1 U^n + a2 U^(n-1),
+  // the two previous time levels (internal numbering, conservative) and nu_tilde's
+  double time_dt_ = 0.0;
+  std::array<double, 3> time_a_{};
+  std::vector<State> time_u_n_, time_u_nm1_;
+  std::vector<double> time_nu_n_, time_nu_nm1_;
 };
 
 }  // namespace tfmb::flow
