@@ -19,12 +19,16 @@ namespace {
 const PerfectGas kAir{1.4, 287.05};
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kPinf = 1.0e5, kTinf = 300.0;
-constexpr double kRadius = 1.0;    // [m] vortex core scale
-constexpr double kStrength = 2.0;  // epsilon of Shu's vortex
+constexpr double kRadius = 1.0;     // [m] vortex core scale
+constexpr double kStrength = 2.0;   // epsilon of Shu's vortex
 constexpr double kHalfWidth = 5.0;  // domain [-5, 5]^2 R
 
-double rho_inf() { return kPinf / (kAir.R * kTinf); }
-double u_inf() { return 0.5 * std::sqrt(kAir.gamma * kAir.R * kTinf); }  // Mach 0.5 along x
+double rho_inf() {
+  return kPinf / (kAir.R * kTinf);
+}
+double u_inf() {
+  return 0.5 * std::sqrt(kAir.gamma * kAir.R * kTinf);
+}  // Mach 0.5 along x
 
 // Shu's vortex centred at (xc, 0) in dimensional form: velocities scale with sqrt(p/rho) of the
 // free stream, temperature with T_inf, lengths with R.
@@ -113,9 +117,10 @@ TEST(TimeAccurate, ConvectedVortexIsSecondOrderInTimeAndTravelsWithTheStream) {
   const double e2 = density_difference(medium, fine);
   const double order = std::log2(e1 / e2);
   const double travel = vortex_centre(fine) - x_start;
-  std::printf("convected vortex, 41 x 41, BDF2: density differences dt/(dt/2) %.3e, "
-              "(dt/2)/(dt/4) %.3e: order %.2f; travel %.4f m against U T = %.4f m\n",
-              e1, e2, order, travel, u_inf() * end_time);
+  std::printf(
+      "convected vortex, 41 x 41, BDF2: density differences dt/(dt/2) %.3e, "
+      "(dt/2)/(dt/4) %.3e: order %.2f; travel %.4f m against U T = %.4f m\n",
+      e1, e2, order, travel, u_inf() * end_time);
   EXPECT_GT(order, 1.8);
   EXPECT_LT(order, 2.3);
   // the centroid of a vortex sampled at h = R/4 sits within a few hundredths of R

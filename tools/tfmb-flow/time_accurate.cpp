@@ -116,8 +116,7 @@ TimeAccurateResult run_time_accurate(FlowSolver& solver, const TimeAccurateSetti
                    "step %5d/%d  t %.4e s  inner %3d (drop %.1e%s)  cfl %.1e  wall force "
                    "(%.5e, %.5e)\n",
                    step, s.time_steps, rec.time, inner.iterations, inner.residual_drop,
-                   inner.converged ? "" : ", not reached", cfl, rec.wall_force.x,
-                   rec.wall_force.y);
+                   inner.converged ? "" : ", not reached", cfl, rec.wall_force.x, rec.wall_force.y);
     }
   }
 

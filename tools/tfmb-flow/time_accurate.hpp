@@ -13,9 +13,9 @@
 namespace tfmb::flow {
 
 struct TimeAccurateSettings {
-  double time_step = 0.0;  // physical time step [s]
-  int time_steps = 0;      // number of physical steps
-  int statistics_start = 1;  // first step (1-based) that enters the averages
+  double time_step = 0.0;     // physical time step [s]
+  int time_steps = 0;         // number of physical steps
+  int statistics_start = 1;   // first step (1-based) that enters the averages
   int inner_iterations = 40;  // pseudo-time iterations per physical step
   // inner convergence: density residual down by this factor from its largest value in the step
   double inner_residual_drop = 1e-3;
@@ -29,7 +29,7 @@ struct TimeAccurateSettings {
 };
 
 struct TimeHistoryRecord {
-  double time = 0.0;                // [s] at the end of the step
+  double time = 0.0;  // [s] at the end of the step
   int inner_iterations = 0;
   double inner_residual_drop = 0.0;  // reached in the step
   Vec2 wall_force{};                 // pressure force on all wall curves [N/m] or [N/rad]
@@ -39,8 +39,8 @@ struct TimeHistoryRecord {
 struct TimeAccurateResult {
   // time averages over the statistics window, in the numbering of the input mesh
   std::vector<State> mean_primitive;
-  std::vector<double> mean_nu_tilde;         // empty without SA
-  std::vector<WallTrace> mean_traces;        // per wall curve given
+  std::vector<double> mean_nu_tilde;              // empty without SA
+  std::vector<WallTrace> mean_traces;             // per wall curve given
   std::vector<std::vector<double>> pressure_rms;  // per wall curve, per trace point [Pa]
   int averaged_steps = 0;
   // largest |mean over the second half - mean over the first half| of the wall pressure,
