@@ -53,6 +53,18 @@ Schema flow_schema() {
                                "largest density residual of the run, the reference of the drop; a "
                                "restart continues from it",
                                0.0, std::nullopt, false));
+  s.attributes.push_back(nattr("/convergence", "linear_iterations", "1",
+                               "linear solver iterations, all nonlinear iterations", 0.0,
+                               std::nullopt, false, AttrType::int64));
+  s.attributes.push_back(nattr("/convergence", "residual_evaluations", "1",
+                               "residual evaluations (one per nonlinear iteration and one per "
+                               "matrix-free product)",
+                               0.0, std::nullopt, false, AttrType::int64));
+  s.attributes.push_back(nattr("/convergence", "residual_seconds", "s",
+                               "wall time spent in residual evaluations", 0.0, std::nullopt,
+                               false));
+  s.attributes.push_back(nattr("/convergence", "wall_time", "s", "wall time of the solve", 0.0,
+                               std::nullopt, false));
   s.attributes.push_back(nattr("/convergence", "time_average", "1",
                                "1: a time-accurate run; fields and wall traces are time means over "
                                "the statistics window, integrals those of the mean state",

@@ -255,6 +255,8 @@ RunResult run(const RunOptions& o, const Logger& log) {
     r.converged = ta.mean_converged;
     r.iterations = static_cast<int>(ta.iterations);
     r.linear_iterations = ta.linear_iterations;
+    r.residual_evaluations = ta.residual_evaluations;
+    r.residual_seconds = ta.residual_seconds;
     r.wall_time = ta.wall_time;
     for (std::size_t k = 0; k < ta.history.size(); ++k) {
       IterationRecord rec;
@@ -293,6 +295,8 @@ RunResult run(const RunOptions& o, const Logger& log) {
     second.history.insert(second.history.begin(), first.history.begin(), first.history.end());
     second.iterations += first.iterations;
     second.linear_iterations += first.linear_iterations;
+    second.residual_evaluations += first.residual_evaluations;
+    second.residual_seconds += first.residual_seconds;
     second.backoffs += first.backoffs;
     second.wall_time += first.wall_time;
     result.report = std::move(second);
@@ -481,6 +485,11 @@ RunResult run(const RunOptions& o, const Logger& log) {
     w.set_attr("/convergence", "criterion", criterion);
     w.set_attr("/convergence", "iterations", static_cast<std::int64_t>(rep.iterations));
     w.set_attr("/convergence", "residual_reference", rep.residual_reference);
+    w.set_attr("/convergence", "linear_iterations", static_cast<std::int64_t>(rep.linear_iterations));
+    w.set_attr("/convergence", "residual_evaluations",
+               static_cast<std::int64_t>(rep.residual_evaluations));
+    w.set_attr("/convergence", "residual_seconds", rep.residual_seconds);
+    w.set_attr("/convergence", "wall_time", rep.wall_time);
     if (result.time_average) {
       const TimeAccurateResult& ta = *result.time_average;
       w.set_attr("/convergence", "time_average", static_cast<std::int64_t>(1));
@@ -542,7 +551,7 @@ RunResult run(const RunOptions& o, const Logger& log) {
   }
   formats::write_xdmf_sidecar(o.output);
   // per unit depth (planar) or for the whole axisymmetric nozzle
-  const std::string per = lm.geometry == Geometry::axisymmetric ? "" : "/m";
+  const bool whole = lm.geometry == Geometry::axisymmetric;
   const std::string how =
       result.time_average
           ? "time average over " + std::to_string(result.time_average->averaged_steps) +
@@ -553,8 +562,9 @@ RunResult run(const RunOptions& o, const Logger& log) {
                 std::to_string(rep.iterations) + " iterations";
   log.summary("wrote " + o.output.string() + ": " + how + " (" +
               std::to_string(rep.linear_iterations) + " linear), residual drop " +
-              num(rep.residual_drop) + ", mass flow " + num(result.mass_flow) + " kg/(s" + per +
-              "), thrust " + num(result.thrust_x) + " N" + per + ", " + num(rep.wall_time) + " s");
+              num(rep.residual_drop) + ", mass flow " + num(result.mass_flow) + (whole ? " kg/s" : " kg/(s m)") +
+              ", thrust " + num(result.thrust_x) + (whole ? " N" : " N/m") + ", " +
+              num(rep.wall_time) + " s");
   return result;
 }
 

@@ -135,6 +135,10 @@ struct SolveReport {
   double residual_reference = 0.0;  // the reference used (RMS of residual/volume)
   double wall_time = 0.0;           // [s]
   double final_cfl = 0.0;           // CFL number of the last iteration
+  // residual evaluations (one per nonlinear iteration, one per matrix-free product) and the
+  // time spent in them: the cost per node of the scheme itself
+  long residual_evaluations = 0;
+  double residual_seconds = 0.0;
   std::vector<IterationRecord> history;
 };
 
@@ -209,7 +213,8 @@ class FlowSolver {
   const PerfectGas& gas() const { return gas_; }
 
  private:
-  void compute_residual(bool update_limiter);
+  void compute_residual(bool update_limiter);   // evaluate_residual, counted and timed
+  void evaluate_residual(bool update_limiter);
   void assemble_jacobian(const std::vector<double>& diag_scale);
   // V a0 / dt of the physical time derivative at node i (0 for a steady solve)
   double physical_time_diagonal(int i) const {
@@ -281,6 +286,8 @@ class FlowSolver {
   ScalarIlu0 sa_ilu_;
   GmresWorkspace gmres_workspace_;
   bool limiter_frozen_ = false;
+  long residual_evaluations_ = 0;  // since construction (see SolveReport)
+  double residual_seconds_ = 0.0;
   // dual time stepping: dt, the backward-difference coefficients a0 U - a1 U^n + a2 U^(n-1),
   // the two previous time levels (internal numbering, conservative) and nu_tilde's
   double time_dt_ = 0.0;

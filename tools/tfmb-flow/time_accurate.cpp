@@ -77,6 +77,8 @@ TimeAccurateResult run_time_accurate(FlowSolver& solver, const TimeAccurateSetti
     cfl = std::clamp(inner.final_cfl, s.cfl_start, s.cfl_max);
     result.iterations += inner.iterations;
     result.linear_iterations += inner.linear_iterations;
+    result.residual_evaluations += inner.residual_evaluations;
+    result.residual_seconds += inner.residual_seconds;
     if (!inner.converged)
       ++result.unconverged_steps;
     TimeHistoryRecord rec;

@@ -50,6 +50,8 @@ struct TimeAccurateResult {
   int unconverged_steps = 0;  // steps whose inner iterations stopped short of the drop
   long iterations = 0;        // inner iterations, all steps
   long linear_iterations = 0;
+  long residual_evaluations = 0;
+  double residual_seconds = 0.0;
   double wall_time = 0.0;  // [s]
   std::vector<TimeHistoryRecord> history;
 };
