@@ -31,15 +31,20 @@ double eddy_viscosity(double rho, double nu_tilde, double nu);
 
 // Source terms per unit volume of the nu_tilde equation written as
 //   D nu_tilde / Dt = production - destruction + diffusion,
-// with vorticity magnitude `vorticity` [1/s] and wall distance d [m]. d_source is an
-// approximation of d(production - destruction)/d nu_tilde that is never positive, for the
-// implicit operator (a positive derivative is left out: it would weaken the diagonal).
+// with vorticity magnitude `vorticity` [1/s] and wall distance d [m]. d_source is the negative
+// part of the exact d(production - destruction)/d nu_tilde, for the implicit operator (a
+// positive derivative is left out: it would weaken the diagonal).
 struct Source {
   double production = 0.0;
   double destruction = 0.0;
   double d_source = 0.0;
 };
 Source source(double nu_tilde, double nu, double vorticity, double wall_distance, bool with_ft2 = true);
+
+// The exact d(production - destruction)/d nu_tilde, both signs (forward AD; source() keeps only
+// its negative part for the implicit operator).
+double source_derivative(double nu_tilde, double nu, double vorticity, double wall_distance,
+                         bool with_ft2 = true);
 
 // Diffusion coefficient nu + nu_tilde (SA) or nu + nu_tilde fn (SA-neg for nu_tilde < 0).
 double diffusivity(double nu_tilde, double nu);
