@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# workflows/flow-benchmarks end to end on its cheapest entry (NPARC 0.75 on 240 x 60, a few
+# seconds): the table row and the JSON figures are there and the run converged; usage errors
+# exit 2. Arguments: source dir, scratch dir, bin dir.
+set -euo pipefail
+src=$1 scratch=$2 bin=$3
+rm -rf "$scratch" && mkdir -p "$scratch"
+list=$("$src/workflows/flow-benchmarks" --list)
+grep -q '^nasa-2dcd-8.91 ' <<<"$list"
+rc=0; "$src/workflows/flow-benchmarks" --only no-such-benchmark --bin "$bin" 2>/dev/null || rc=$?
+[ "$rc" -eq 2 ] || { echo "unknown benchmark: exit $rc, expected 2"; exit 1; }
+"$src/workflows/flow-benchmarks" --run-root "$scratch" --bin "$bin" --only nparc-0.75-240x60 \
+  --json "$scratch/figures.json" | tee "$scratch/table.txt"
+grep -q '^| nparc-0.75-240x60 | 14,701 | 1 | ' "$scratch/table.txt"
+/usr/bin/python3 - "$scratch/figures.json" <<'PY'
+import json, sys
+[f] = json.load(open(sys.argv[1]))
+assert f["converged"], f
+assert f["evaluations"] >= f["iterations"] > 0, f
+assert f["residual_s"] > 0 and f["wall_s"] >= f["residual_s"], f
+assert f["peak_mb"] > 0, f
+print("flow-benchmarks: figures read back:", {k: f[k] for k in ("iterations", "linear", "wall_s")})
+PY
