@@ -357,8 +357,7 @@ RunResult run(const RunOptions& o, const Logger& log) {
   if (result.time_average) {
     traces = result.time_average->mean_traces;
   } else {
-    for (int b : wall_curves)
-      traces.push_back(solver.wall_trace(b));
+    traces = solver.wall_traces(wall_curves);
   }
   const std::vector<double> nu_tilde = turbulent ? solver.nu_tilde() : std::vector<double>{};
   const std::vector<double> eddy_viscosity =
@@ -376,8 +375,9 @@ RunResult run(const RunOptions& o, const Logger& log) {
     log.info("heat-transfer probe (walls " + num(heat_transfer_dt) +
              " K below adiabatic): " + (probe.converged ? "converged" : "NOT converged") + " in " +
              std::to_string(probe.iterations) + " iterations");
+    const std::vector<WallTrace> probe_traces = solver.wall_traces(wall_curves);
     for (std::size_t c = 0; c < wall_curves.size(); ++c) {
-      const WallTrace probe_trace = solver.wall_trace(wall_curves[c]);
+      const WallTrace& probe_trace = probe_traces[c];
       std::vector<double> h(probe_trace.heat_flux.size());
       for (std::size_t k = 0; k < h.size(); ++k)
         h[k] = probe_trace.heat_flux[k] / heat_transfer_dt;

@@ -1336,10 +1336,24 @@ BoundaryIntegral FlowSolver::boundary_integral(int curve) {
 }
 
 WallTrace FlowSolver::wall_trace(int curve) {
+  return wall_traces({curve}).front();
+}
+
+std::vector<WallTrace> FlowSolver::wall_traces(const std::vector<int>& curves) {
+  // primitives and gradients once for all curves (a time-accurate run takes every wall's
+  // trace at every step)
   const ScopedThreads threads(settings_.threads);
   for (int i = 0; i < dual_.num_nodes; ++i)
     w_[i] = gas_.primitive(u_[i]);
   lsq_gradients(dual_, lsq_, w_, grad_);
+  std::vector<WallTrace> traces;
+  traces.reserve(curves.size());
+  for (int curve : curves)
+    traces.push_back(trace_of(curve));
+  return traces;
+}
+
+WallTrace FlowSolver::trace_of(int curve) const {
   const auto& edges = mesh_.boundaries.at(curve).edges;
   WallTrace t;
   if (edges.empty())

@@ -208,6 +208,7 @@ class FlowSolver {
   std::vector<State> residual();
   BoundaryIntegral boundary_integral(int curve);
   WallTrace wall_trace(int curve);
+  std::vector<WallTrace> wall_traces(const std::vector<int>& curves);  // same, several at once
 
   const DualMesh& dual() const { return dual_; }
   const PerfectGas& gas() const { return gas_; }
@@ -222,6 +223,7 @@ class FlowSolver {
   }
   void add_physical_time_derivative();
   void apply_strong_conditions(std::vector<State>& u) const;
+  WallTrace trace_of(int curve) const;  // from the current w_ and grad_
   bool physical(const std::vector<State>& u) const;
   void update_eddy_viscosity();
   double wall_temperature_at(int bc, int node) const;

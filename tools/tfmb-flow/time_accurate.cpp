@@ -107,10 +107,9 @@ TimeAccurateResult run_time_accurate(FlowSolver& solver, const TimeAccurateSetti
         for (std::size_t i = 0; i < nu.size(); ++i)
           sum_nu[i] += nu[i];
       }
-      for (std::size_t c = 0; c < wall_curves.size(); ++c) {
-        last_traces[c] = solver.wall_trace(wall_curves[c]);
+      last_traces = solver.wall_traces(wall_curves);
+      for (std::size_t c = 0; c < wall_curves.size(); ++c)
         sums[c].add(last_traces[c], second_half);
-      }
       ++result.averaged_steps;
     }
     if (s.print_every > 0 && (step % s.print_every == 0 || step == 1 || step == s.time_steps)) {
