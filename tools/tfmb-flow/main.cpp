@@ -94,9 +94,23 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--turbulence-coupling", o.turbulence_coupling,
                  "SA: segregated (one implicit nu_tilde step after each mean-flow step, eddy "
-                 "viscosity lagged) or coupled (mean flow and nu_tilde in one Newton step, 5x5 "
-                 "blocks; with --matrix-free true the Krylov operator holds every cross term)")
-      ->check(CLI::IsMember({"segregated", "coupled"}))
+                 "viscosity lagged), coupled (mean flow and nu_tilde in one Newton step, 5x5 "
+                 "blocks with their cross terms; with --matrix-free true the Krylov operator holds "
+                 "every cross term) or auto (segregated until the density residual has fallen by "
+                 "--coupling-switch-drop, coupled from then on)")
+      ->check(CLI::IsMember({"segregated", "coupled", "auto"}))
+      ->capture_default_str();
+  app.add_option("--turbulence-jacobian", o.turbulence_jacobian,
+                 "SA: linearisation of the nu_tilde equation in the implicit operator: exact (the "
+                 "diffusion with d(nu + nu_tilde)/d nu_tilde and the whole source derivative) or "
+                 "m-matrix (positive diffusion coefficients and the stabilising part of the "
+                 "source only: diagonally dominant, but a Picard rather than a Newton step)")
+      ->check(CLI::IsMember({"exact", "m-matrix"}))
+      ->capture_default_str();
+  app.add_option("--coupling-switch-drop", o.settings.coupling_switch_drop,
+                 "--turbulence-coupling auto: density residual drop from which the steps are "
+                 "coupled")
+      ->check(CLI::PositiveNumber)
       ->capture_default_str();
   app.add_option("--time-step", o.time.time_step,
                  "[s] time-accurate run (dual time stepping, BDF2) with this physical time step "

@@ -173,7 +173,10 @@ RunResult run(const RunOptions& o, const Logger& log) {
   settings.viscous = viscous;
   settings.turbulent = turbulent;
   settings.sa_ft2 = o.model != "sa-noft2";
-  settings.turbulence_coupled = turbulent && o.turbulence_coupling == "coupled";
+  settings.sa_exact_jacobian = o.turbulence_jacobian == "exact";
+  settings.turbulence_coupling = o.turbulence_coupling == "coupled" ? TurbulenceCoupling::coupled
+                                 : o.turbulence_coupling == "auto"  ? TurbulenceCoupling::automatic
+                                                                   : TurbulenceCoupling::segregated;
   const double p_ref = has_inflow ? o.stagnation_pressure : o.ambient_pressure;
   const double t_ref = has_inflow ? o.stagnation_temperature : t_inf;
   const double rho_ref = p_ref / (o.gas_constant * t_ref);
@@ -539,8 +542,8 @@ RunResult run(const RunOptions& o, const Logger& log) {
       << "\nwall_aligned_aspect_ratio = " << settings.wall_aligned_aspect_ratio
       << "\nmatrix_free = " << (settings.matrix_free ? "true" : "false")
       << "\nfirst_order_start = " << (o.first_order_start ? "true" : "false")
-      << "\nturbulence_coupling = \"" << (settings.turbulence_coupled ? "coupled" : "segregated")
-      << "\""
+      << "\nturbulence_coupling = \"" << o.turbulence_coupling << "\""
+      << "\nturbulence_jacobian = \"" << o.turbulence_jacobian << "\""
       << "\nthreads = " << settings.threads << "\n";
     prov.settings = s.str();
     prov.inputs = {o.mesh_file};

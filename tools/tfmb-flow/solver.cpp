@@ -206,12 +206,12 @@ FlowSolver::FlowSolver(const Mesh& mesh, Geometry geometry, const PerfectGas& ga
     }
     wall_distance_ = tfmb::flow::wall_distance(dual_.coords, walls);
     nu_tilde_.assign(n, 0.0);
-    if (settings_.turbulence_coupled) {
+    sa_row_scale_ = settings_.reference_state[0];
+    if (settings_.turbulence_coupling != TurbulenceCoupling::segregated)
       jac_coupled_ = make_pattern(dual_.num_nodes, dual_.edges, 5);
-      sa_row_scale_ = settings_.reference_state[0];
-    }
+    turbulence_coupled_ = settings_.turbulence_coupling == TurbulenceCoupling::coupled;
   } else {
-    settings_.turbulence_coupled = false;  // nothing to couple
+    settings_.turbulence_coupling = TurbulenceCoupling::segregated;  // nothing to couple
   }
 }
 
@@ -309,16 +309,25 @@ void FlowSolver::turbulence_residual(bool jacobian, const std::vector<double>* d
   sa_res_.resize(n);
   sa_nu_.resize(n);
   sa_diffusivity_.resize(n);
+  const bool cross = jacobian && turbulence_coupled_;
   if (jacobian) {
     sa_diag_.assign(n, 0.0);
     sa_offdiag_.assign(inc.edge.size(), 0.0);
   }
+  if (cross) {
+    sa_cross_diag_.assign(4 * static_cast<std::size_t>(n), 0.0);
+    sa_cross_offdiag_.assign(4 * inc.edge.size(), 0.0);
+  }
   std::vector<double>& nu = sa_nu_;
   std::vector<double>& diffusivity = sa_diffusivity_;
+  const bool exact = settings_.sa_exact_jacobian;
+  std::vector<double> diffusivity_slope(exact ? n : 0);
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     nu[i] = visc.viscosity(gas_.temperature(w_[i])) / w_[i][0];
     diffusivity[i] = sa::diffusivity(nu_tilde_[i], nu[i]);
+    if (exact)
+      diffusivity_slope[i] = sa::diffusivity_derivative(nu_tilde_[i], nu[i]);
   }
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
@@ -333,8 +342,29 @@ void FlowSolver::turbulence_residual(bool jacobian, const std::vector<double>* d
       const double c = norm(n_e) / norm(dual_.coords[j] - dual_.coords[i]);
       const double d_face = 0.5 * (diffusivity[i] + diffusivity[j]);
       const double k_i = c / sa::sigma * ((1.0 + sa::cb2) * d_face - sa::cb2 * diffusivity[i]);
-      r += (inflow + k_i) * (nu_tilde_[j] - nu_tilde_[i]);
-      if (jacobian) {
+      const double jump = nu_tilde_[j] - nu_tilde_[i];
+      r += (inflow + k_i) * jump;
+      if (cross && inflow > 0.0) {
+        // d(-inflow jump)/dU through the face velocity (u_i + u_j)/2, u = (rho u)/rho
+        const double g = jump * inc.sign[k] * 0.5;
+        double* di = sa_cross_diag_.data() + 4 * static_cast<std::size_t>(i);
+        double* dj = sa_cross_offdiag_.data() + 4 * static_cast<std::size_t>(k);
+        const double ri = g / w_[i][0], rj = g / w_[j][0];
+        di[0] -= ri * (w_[i][1] * n_e.x + w_[i][2] * n_e.y);
+        di[1] += ri * n_e.x;
+        di[2] += ri * n_e.y;
+        dj[0] -= rj * (w_[j][1] * n_e.x + w_[j][2] * n_e.y);
+        dj[1] += rj * n_e.x;
+        dj[2] += rj * n_e.y;
+      }
+      if (jacobian && exact) {
+        // the whole derivative, with that of the diffusivities D(nu_tilde) at i and j
+        const double dk_dj = c / sa::sigma * (1.0 + sa::cb2) * 0.5 * diffusivity_slope[j];
+        const double dk_di =
+            c / sa::sigma * ((1.0 + sa::cb2) * 0.5 - sa::cb2) * diffusivity_slope[i];
+        d += inflow + k_i - dk_di * jump;
+        sa_offdiag_[k] = -(inflow + k_i + dk_dj * jump);
+      } else if (jacobian) {
         const double a = inflow + std::max(k_i, 0.0);
         d += a;
         sa_offdiag_[k] = -a;
@@ -370,6 +400,11 @@ void FlowSolver::turbulence_residual(bool jacobian, const std::vector<double>* d
         for (int k = inc.offsets[i]; k < inc.offsets[i + 1]; ++k)
           sa_offdiag_[k] = 0.0;
       }
+      if (cross) {
+        std::fill_n(sa_cross_diag_.data() + 4 * static_cast<std::size_t>(i), 4, 0.0);
+        std::fill(sa_cross_offdiag_.data() + 4 * static_cast<std::size_t>(inc.offsets[i]),
+                  sa_cross_offdiag_.data() + 4 * static_cast<std::size_t>(inc.offsets[i + 1]), 0.0);
+      }
       continue;
     }
     const double volume = dual_.volume[i];
@@ -377,8 +412,33 @@ void FlowSolver::turbulence_residual(bool jacobian, const std::vector<double>* d
     const sa::Source src =
         sa::source(nu_tilde_[i], nu[i], vorticity, wall_distance_[i], settings_.sa_ft2);
     sa_res_[i] -= volume * (src.production - src.destruction);
-    if (jacobian)
-      sa_diag_[i] -= volume * src.d_source;
+    const double omega_signed = grad_[i][4] - grad_[i][3];
+    if (cross && omega_signed != 0.0) {
+      // through the vorticity of the least-squares gradient, grad_i = sum_k c_k (q_j - q_i):
+      // d Omega_i / d u_j = -sign c_k,y, d Omega_i / d v_j = sign c_k,x
+      const double g = -volume *
+                       sa::source_vorticity_derivative(nu_tilde_[i], nu[i], vorticity,
+                                                       wall_distance_[i], settings_.sa_ft2) *
+                       (omega_signed > 0.0 ? 1.0 : -1.0);
+      double* di = sa_cross_diag_.data() + 4 * static_cast<std::size_t>(i);
+      for (int k = inc.offsets[i]; k < inc.offsets[i + 1]; ++k) {
+        const int j = inc.neighbour[k];
+        const Vec2 c = lsq_.coefficient[k];
+        const double a_u = -g * c.y, a_v = g * c.x;  // d sa_res_i / d u_j, d v_j
+        double* dj = sa_cross_offdiag_.data() + 4 * static_cast<std::size_t>(k);
+        dj[0] -= (a_u * w_[j][1] + a_v * w_[j][2]) / w_[j][0];
+        dj[1] += a_u / w_[j][0];
+        dj[2] += a_v / w_[j][0];
+        di[0] += (a_u * w_[i][1] + a_v * w_[i][2]) / w_[i][0];
+        di[1] -= a_u / w_[i][0];
+        di[2] -= a_v / w_[i][0];
+      }
+    }
+    if (jacobian) {
+      sa_diag_[i] -= volume * (exact ? sa::source_derivative(nu_tilde_[i], nu[i], vorticity,
+                                                             wall_distance_[i], settings_.sa_ft2)
+                                     : src.d_source);
+    }
     if (time_dt_ > 0.0) {
       // physical time derivative (see begin_time_step)
       double dnu = time_a_[0] * nu_tilde_[i] - time_a_[1] * time_nu_n_[i];
@@ -623,7 +683,7 @@ void FlowSolver::evaluate_residual(bool update_limiter) {
     }
   }
   add_physical_time_derivative();
-  if (turbulent && settings_.turbulence_coupled)
+  if (turbulent && turbulence_coupled_)
     turbulence_residual(false, nullptr);
 }
 
@@ -672,6 +732,9 @@ void FlowSolver::add_physical_time_derivative() {
 void FlowSolver::assemble_coupled_jacobian() {
   const int n = dual_.num_nodes;
   const auto& inc = dual_.node_edges;
+  std::vector<double> eddy_slope(n);
+  for (int i = 0; i < n; ++i)
+    eddy_slope[i] = sa::eddy_viscosity_derivative(w_[i][0], nu_tilde_[i], sa_nu_[i]);
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     for (int p = jac_.row_ptr[i]; p < jac_.row_ptr[i + 1]; ++p) {
@@ -685,13 +748,75 @@ void FlowSolver::assemble_coupled_jacobian() {
       for (int q = 0; q < 5; ++q)
         c[20 + q] = 0.0;
     }
-    jac_coupled_.block(jac_coupled_.diag_pos[i])[24] = sa_row_scale_ * sa_diag_[i];
+    double* diag = jac_coupled_.block(jac_coupled_.diag_pos[i]);
+    diag[24] = sa_row_scale_ * sa_diag_[i];
+    for (int q = 0; q < 4; ++q)
+      diag[20 + q] = sa_row_scale_ * sa_cross_diag_[4 * static_cast<std::size_t>(i) + q];
+    // mean-flow rows against nu_tilde: R_i = sum_e sign f_e, f_e through mu_t,face =
+    // (mu_t,i + mu_t,j) / 2
+    const double slope_i = 0.5 * eddy_slope[i];
     for (int k = inc.offsets[i]; k < inc.offsets[i + 1]; ++k) {
       const int e = inc.edge[k];
+      const int j = inc.neighbour[k];
       const int pos = inc.sign[k] > 0 ? edge_pos_ij_[e] : edge_pos_ji_[e];
-      jac_coupled_.block(pos)[24] = sa_row_scale_ * sa_offdiag_[k];
+      double* off = jac_coupled_.block(pos);
+      off[24] = sa_row_scale_ * sa_offdiag_[k];
+      for (int q = 0; q < 4; ++q)
+        off[20 + q] = sa_row_scale_ * sa_cross_offdiag_[4 * static_cast<std::size_t>(k) + q];
+      const State& df = edge_flux_eddy_slope_[e];
+      const double s = inc.sign[k];
+      for (int r = 0; r < 4; ++r) {
+        diag[5 * r + 4] += s * df[r] * slope_i;
+        off[5 * r + 4] += s * df[r] * 0.5 * eddy_slope[j];
+      }
+    }
+    // rows replaced by strong conditions (no-slip momentum and temperature, imposed nodes)
+    // do not depend on nu_tilde
+    const int b = wall_node_bc_[i];
+    const int rows_fixed_from = fixed_node_[i] ? 0 : 1;
+    const int rows_fixed_to =
+        fixed_node_[i] ? 4 : (b < 0 ? 1 : (bcs_[b].kind == BcKind::wall_isothermal ? 4 : 3));
+    for (int p = jac_coupled_.row_ptr[i]; p < jac_coupled_.row_ptr[i + 1]; ++p) {
+      for (int r = rows_fixed_from; r < rows_fixed_to; ++r)
+        jac_coupled_.block(p)[5 * r + 4] = 0.0;
     }
   }
+}
+
+std::vector<double> FlowSolver::jacobian_product(const std::vector<double>& x, bool assembled) {
+  const ScopedThreads threads(settings_.threads);
+  const bool coupled_before = turbulence_coupled_;
+  turbulence_coupled_ = settings_.turbulent;
+  if (turbulence_coupled_ && jac_coupled_.num_rows == 0)
+    jac_coupled_ = make_pattern(dual_.num_nodes, dual_.edges, 5);
+  const std::vector<double> no_time_term(dual_.num_nodes, 0.0);
+  compute_residual(true);
+  assemble_jacobian(no_time_term);
+  if (turbulence_coupled_) {
+    turbulence_residual(true, &no_time_term);
+    assemble_coupled_jacobian();
+  }
+  const int nb = turbulence_coupled_ ? 5 : 4;
+  if (x.size() != nb * static_cast<std::size_t>(dual_.num_nodes))
+    throw std::invalid_argument("flow: jacobian_product needs 4 (5 with SA) values per node");
+  std::vector<double> x_internal(x.size()), y_internal(x.size()), y(x.size());
+  for (int i = 0; i < dual_.num_nodes; ++i) {
+    for (int v = 0; v < nb; ++v)
+      x_internal[nb * static_cast<std::size_t>(new_of_old_[i]) + v] =
+          x[nb * static_cast<std::size_t>(i) + v];
+  }
+  if (assembled)
+    system_matrix().multiply(x_internal, y_internal);
+  else
+    matrix_free_operator(no_time_term)(x_internal, y_internal);
+  for (int i = 0; i < dual_.num_nodes; ++i) {
+    for (int v = 0; v < nb; ++v)
+      y[nb * static_cast<std::size_t>(i) + v] =
+          y_internal[nb * static_cast<std::size_t>(new_of_old_[i]) + v];
+  }
+  compute_residual(false);
+  turbulence_coupled_ = coupled_before;
+  return y;
 }
 
 std::vector<State> FlowSolver::residual() {
@@ -725,6 +850,8 @@ State FlowSolver::residual_norm() const {
 
 void FlowSolver::assemble_jacobian(const std::vector<double>& diag_scale) {
   jac_.set_zero();
+  if (settings_.turbulent && turbulence_coupled_)
+    edge_flux_eddy_slope_.assign(dual_.num_edges(), State{});
   const int ne = dual_.num_edges();
   const bool viscous = settings_.viscous;
 #pragma omp parallel for schedule(static)
@@ -767,6 +894,20 @@ void FlowSolver::assemble_jacobian(const std::vector<double>& diag_scale) {
       const double mu_laminar =
           settings_.viscosity.viscosity(0.5 * (gas_.temperature(w_[i]) + gas_.temperature(w_[j])));
       const double eddy_fraction = mu_t / (mu_laminar + mu_t);
+      if (settings_.turbulent && turbulence_coupled_) {
+        // f = F_c - F_v and F_v is affine in mu_t: one difference is its exact slope
+        const double h = mu_laminar;
+        const State fv0 =
+            viscous_flux(gas_, settings_.viscosity, dual_.coords[i], dual_.coords[j], w_[i], w_[j],
+                         grad_[i], grad_[j], axi ? n_e : dual_.edge_normal_planar[e],
+                         axi ? norm(n_e) / norm(dual_.edge_normal_planar[e]) : 0.0, nullptr, mu_t);
+        const State fv1 = viscous_flux(
+            gas_, settings_.viscosity, dual_.coords[i], dual_.coords[j], w_[i], w_[j], grad_[i],
+            grad_[j], axi ? n_e : dual_.edge_normal_planar[e],
+            axi ? norm(n_e) / norm(dual_.edge_normal_planar[e]) : 0.0, nullptr, mu_t + h);
+        for (int v = 0; v < 4; ++v)
+          edge_flux_eddy_slope_[e][v] = -(fv1[v] - fv0[v]) / h;
+      }
       // F = F_c - c (Phi_j - Phi_i)
       add_block(jac.d_left.data(),
                 viscous_phi_jacobian(gas_, settings_.viscosity, w_[i], uf, vf, eddy_fraction), c);
@@ -873,7 +1014,7 @@ LinearOperator FlowSolver::matrix_free_operator(const std::vector<double>& diag_
   // iteration drives to zero. Coupled: nu_tilde is the fifth unknown of each node and its row
   // the nu_tilde residual times sa_row_scale_.
   const int n = dual_.num_nodes;
-  const bool coupled = settings_.turbulence_coupled;
+  const bool coupled = turbulence_coupled_;
   const int nb = coupled ? 5 : 4;
   auto base_u = std::make_shared<std::vector<State>>(u_);
   auto base_res = std::make_shared<std::vector<State>>(res_);
@@ -977,8 +1118,10 @@ SolveReport FlowSolver::solve() {
   const long evaluations_before = residual_evaluations_;
   const double residual_seconds_before = residual_seconds_;
   const int n = dual_.num_nodes;
-  const bool coupled = settings_.turbulence_coupled;
-  const int nb = coupled ? 5 : 4;  // unknowns per node
+  turbulence_coupled_ =
+      settings_.turbulent && settings_.turbulence_coupling == TurbulenceCoupling::coupled;
+  bool coupled = turbulence_coupled_;
+  int nb = coupled ? 5 : 4;  // unknowns per node
   std::vector<double> rhs(nb * static_cast<std::size_t>(n)), du(nb * static_cast<std::size_t>(n));
   std::vector<double> diag_scale(n);
   std::vector<State> u_good = u_;
@@ -1021,6 +1164,18 @@ SolveReport FlowSolver::solve() {
   int stationary_count = 0;
 
   for (int it = 1; it <= settings_.max_iterations; ++it) {
+    if (!coupled && settings_.turbulence_coupling == TurbulenceCoupling::automatic &&
+        report.residual_drop <= settings_.coupling_switch_drop && it > ramp) {
+      coupled = turbulence_coupled_ = true;
+      nb = 5;
+      rhs.assign(nb * static_cast<std::size_t>(n), 0.0);
+      du.assign(nb * static_cast<std::size_t>(n), 0.0);
+      nu_good = nu_tilde_;
+      report.coupled_from = it;
+      if (settings_.print_every > 0)
+        std::fprintf(stderr, "iter %5d  coupled SA Newton steps from here (drop %.2e)\n", it,
+                     report.residual_drop);
+    }
     if (ramp > 0) {
       const double f = std::min(1.0, static_cast<double>(it) / ramp);
       for (std::size_t b = 0; b < bcs_.size(); ++b) {

@@ -17,6 +17,8 @@
 
 namespace tfmb::flow {
 
+enum class TurbulenceCoupling { segregated, coupled, automatic };
+
 struct SolverSettings {
   int order = 2;             // 1 or 2 (spatial accuracy of the convective fluxes)
   double entropy_fix = 0.1;  // Harten delta as a fraction of the sound speed
@@ -101,9 +103,15 @@ struct SolverSettings {
   // Coupled: mean flow and nu_tilde in one Newton step, a 5x5 block system per node (the
   // segregated step lags the eddy viscosity by an iteration and never sees how the mean flow
   // responds to nu_tilde). With matrix_free the Krylov operator is the exact derivative of the
-  // whole residual, cross terms included; the preconditioner is the first-order mean-flow
-  // Jacobian beside the scalar nu_tilde Jacobian of the segregated step (no cross blocks).
-  bool turbulence_coupled = false;
+  // whole residual; the preconditioner is the first-order Jacobian with its cross blocks (mean
+  // flow against nu_tilde through mu_t; nu_tilde against the mean flow through the convecting
+  // velocity and the vorticity).
+  // Automatic: segregated steps through the start-up transient (the coupled step's nu_tilde
+  // limit relaxes whole nodes there and holds the CFL down), coupled from the iteration on
+  // which the density residual has fallen by coupling_switch_drop.
+  TurbulenceCoupling turbulence_coupling = TurbulenceCoupling::automatic;
+  double coupling_switch_drop = 1e-2;
+  bool sa_exact_jacobian = true;     // SA: the whole linearisation (else its M-matrix part)
   bool sa_ft2 = true;                // the ft2 term of standard SA (TMR "SA"); false: SA-noft2
   double sa_freestream_ratio = 3.0;  // nu_tilde / nu entering at inflow and far field (TMR)
   int threads = 1;                   // OpenMP threads used inside solve() and residual()
@@ -131,6 +139,7 @@ struct SolveReport {
   int iterations = 0;
   long linear_iterations = 0;
   int backoffs = 0;                 // CFL back-offs after non-physical states
+  int coupled_from = 0;             // automatic coupling: first coupled iteration (0: none)
   double residual_drop = 1.0;       // final density residual / reference density residual
   double residual_reference = 0.0;  // the reference used (RMS of residual/volume)
   double wall_time = 0.0;           // [s]
@@ -204,6 +213,13 @@ class FlowSolver {
   double time_step() const { return time_dt_; }
   void set_inflow_ramp(int iterations) { settings_.inflow_ramp_iterations = iterations; }
 
+  // Checks of the implicit operator (tests): y = J x for the steady residual at the current
+  // state, x and y per node of the mesh given, 4 unknowns per node (5 with
+  // SA: nu_tilde last, its row scaled as in the coupled system). `assembled`: the first-order
+  // matrix that preconditions the Newton steps (cross blocks included); otherwise the
+  // difference quotient of the residual, the Krylov operator of --matrix-free.
+  std::vector<double> jacobian_product(const std::vector<double>& x, bool assembled);
+
   // Residual R(U) (flux balance, positive = net outflow) for the current state; per node.
   std::vector<State> residual();
   BoundaryIntegral boundary_integral(int curve);
@@ -230,16 +246,19 @@ class FlowSolver {
   double turbulence_step(double cfl);  // segregated; returns the RMS of d nu_tilde / dt
   // Residual of the nu_tilde equation, sa_res_ = -V d nu_tilde/dt (net outflow sign, as res_;
   // on no-slip walls nu_tilde itself, whose strong value is 0), and with `jacobian` its scalar
-  // Jacobian in sa_diag_ / sa_offdiag_ (an M-matrix: upwind convection, the positive diffusion
-  // coefficients, the stabilising part of the source), the diagonal starting from diag_scale
-  // (V/dt) when given.
+  // Jacobian in sa_diag_ / sa_offdiag_ (settings_.sa_exact_jacobian: the whole derivative;
+  // otherwise an M-matrix: upwind convection, the positive diffusion coefficients, the
+  // stabilising part of the source), the diagonal starting from diag_scale (V/dt) when given;
+  // for the coupled system also the cross terms sa_cross_diag_ / sa_cross_offdiag_.
   void turbulence_residual(bool jacobian, const std::vector<double>* diag_scale);
   double turbulence_residual_norm() const;  // RMS of sa_res_ / V off the walls
   // The coupled 5x5 system: mean-flow blocks of jac_, the nu_tilde row of sa_diag_ and
-  // sa_offdiag_ scaled by sa_row_scale_.
+  // sa_offdiag_ scaled by sa_row_scale_, and the cross blocks: mean-flow rows against
+  // nu_tilde through mu_t in the viscous fluxes, the nu_tilde row against the mean flow
+  // through the convecting velocity.
   void assemble_coupled_jacobian();
   const BlockSparseMatrix& system_matrix() const {
-    return settings_.turbulence_coupled ? jac_coupled_ : jac_;
+    return turbulence_coupled_ ? jac_coupled_ : jac_;
   }
   void set_freestream_nu_tilde();
   State residual_norm() const;
@@ -273,10 +292,16 @@ class FlowSolver {
   std::vector<State> fixed_u_;
   std::vector<int> assembled_rows_;  // nodes whose rows of the matrix-free operator are assembled
 
+  bool turbulence_coupled_ = false;  // this iteration solves the coupled 5x5 system
   std::vector<State> u_, w_, res_, phi_, edge_flux_;
   std::vector<std::array<double, 8>> grad_;
   std::vector<double> nu_tilde_, eddy_viscosity_, wall_distance_;
   std::vector<double> sa_res_, sa_diag_, sa_offdiag_;
+  // Coupled system only: d sa_res_i / d U_i (4 per node) and d sa_res_i / d U_j (4 per node
+  // edge incidence) through the convecting velocity, and d f_e / d mu_t at each edge (f_e the
+  // flux of edge e in res_, through the eddy viscosity in the viscous flux).
+  std::vector<double> sa_cross_diag_, sa_cross_offdiag_;
+  std::vector<State> edge_flux_eddy_slope_;
   std::vector<double> sa_nu_, sa_diffusivity_;  // scratch of turbulence_residual()
   // Scale of the nu_tilde rows in the coupled system: the reference density, so that the row
   // reads as the transport of rho nu_tilde beside the mass, momentum and energy rows.

@@ -19,6 +19,16 @@ double eddy_viscosity(double rho, double nu_tilde, double nu) {
   return rho * nu_tilde * fv1(nu_tilde / nu);
 }
 
+double eddy_viscosity_derivative(double rho, double nu_tilde, double nu) {
+  if (nu_tilde <= 0.0)
+    return 0.0;
+  const double chi = nu_tilde / nu;
+  const double c3 = chi * chi * chi;
+  const double v3 = cv1 * cv1 * cv1;
+  // fv1' = 3 chi^2 cv1^3 / (chi^3 + cv1^3)^2
+  return rho * (fv1(chi) + 3.0 * c3 * v3 / ((c3 + v3) * (c3 + v3)));
+}
+
 double diffusivity(double nu_tilde, double nu) {
   if (nu_tilde >= 0.0) return nu + nu_tilde;
   // SA-neg: fn = (cn1 + chi^3) / (cn1 - chi^3) (Allmaras et al. 2012, eq. 22)
@@ -27,12 +37,22 @@ double diffusivity(double nu_tilde, double nu) {
   return nu + nu_tilde * (cn1 + c3) / (cn1 - c3);
 }
 
+double diffusivity_derivative(double nu_tilde, double nu) {
+  if (nu_tilde >= 0.0)
+    return 1.0;
+  using D1 = Dual<1>;
+  const D1 x = D1::variable(0, nu_tilde);
+  const D1 chi = x / nu;
+  const D1 c3 = chi * chi * chi;
+  return (nu + x * (cn1 + c3) / (cn1 - c3)).d[0];
+}
+
 namespace {
 
 // P - D of the nu_tilde >= 0 branch (standard SA with the S-tilde clipping of TMR note 1(c)),
 // templated on the scalar of nu_tilde so that a Dual gives its exact derivative.
-template <typename T>
-void production_destruction(const T& nu_tilde, double nu, double vorticity, double d,
+template <typename T, typename W>
+void production_destruction(const T& nu_tilde, double nu, const W& vorticity, double d,
                             bool with_ft2, T& production, T& destruction) {
   using std::exp;
   using std::pow;
@@ -88,6 +108,17 @@ Source source(double nu_tilde, double nu, double vorticity, double d, bool with_
   s.destruction = destruction.v;
   s.d_source = std::min(production.d[0] - destruction.d[0], 0.0);
   return s;
+}
+
+double source_vorticity_derivative(double nu_tilde, double nu, double vorticity, double d,
+                                   bool with_ft2) {
+  if (nu_tilde < 0.0)
+    return cb1 * (1.0 - ct3) * nu_tilde;
+  using D1 = Dual<1>;
+  D1 production, destruction;
+  production_destruction(D1(nu_tilde), nu, D1::variable(0, vorticity), d, with_ft2, production,
+                         destruction);
+  return production.d[0] - destruction.d[0];
 }
 
 double source_derivative(double nu_tilde, double nu, double vorticity, double d, bool with_ft2) {

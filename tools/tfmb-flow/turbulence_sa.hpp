@@ -29,6 +29,9 @@ double fv1(double chi);
 // Eddy viscosity [Pa s]: rho nu_tilde fv1 (zero for a negative nu_tilde, SA-neg).
 double eddy_viscosity(double rho, double nu_tilde, double nu);
 
+// d mu_t / d nu_tilde at fixed rho and nu: rho (fv1 + chi fv1'(chi)) (0 for nu_tilde <= 0).
+double eddy_viscosity_derivative(double rho, double nu_tilde, double nu);
+
 // Source terms per unit volume of the nu_tilde equation written as
 //   D nu_tilde / Dt = production - destruction + diffusion,
 // with vorticity magnitude `vorticity` [1/s] and wall distance d [m]. d_source is the negative
@@ -46,7 +49,15 @@ Source source(double nu_tilde, double nu, double vorticity, double wall_distance
 double source_derivative(double nu_tilde, double nu, double vorticity, double wall_distance,
                          bool with_ft2 = true);
 
+// d(production - destruction)/d vorticity (forward AD): the nu_tilde equation's dependence on
+// the mean flow through the vorticity, for the cross blocks of the coupled Jacobian.
+double source_vorticity_derivative(double nu_tilde, double nu, double vorticity,
+                                   double wall_distance, bool with_ft2 = true);
+
 // Diffusion coefficient nu + nu_tilde (SA) or nu + nu_tilde fn (SA-neg for nu_tilde < 0).
 double diffusivity(double nu_tilde, double nu);
+
+// d diffusivity / d nu_tilde (1 for nu_tilde >= 0; the SA-neg branch by forward AD).
+double diffusivity_derivative(double nu_tilde, double nu);
 
 }  // namespace tfmb::flow::sa
