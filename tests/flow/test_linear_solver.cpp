@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <stdexcept>
 
@@ -73,6 +74,67 @@ TEST_P(LinearSolverBlocks, GmresWithBlockIluSolvesAConvectionLikeSystem) {
 }
 
 INSTANTIATE_TEST_SUITE_P(BlockSizes, LinearSolverBlocks, ::testing::Values(4, 5, 6));
+
+// Level-of-fill ILU(k) on a 2D grid graph (5-point, 30 x 30 nodes, 4x4 blocks): with k large
+// enough to keep every fill-in the factorisation is the exact LU, so one application solves the
+// system (single-precision factors: to 1e-5); each level takes more blocks than the one before
+// and the GMRES iterations do not grow with k.
+TEST(LinearSolver, IluWithLevelOfFill) {
+  const int m = 30, n = m * m, nb = 4;
+  std::vector<std::array<int, 2>> edges;
+  for (int j = 0; j < m; ++j) {
+    for (int i = 0; i < m; ++i) {
+      if (i + 1 < m)
+        edges.push_back({j * m + i, j * m + i + 1});
+      if (j + 1 < m)
+        edges.push_back({j * m + i, (j + 1) * m + i});
+    }
+  }
+  BlockSparseMatrix a = make_pattern(n, edges, nb);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int i = 0; i < n; ++i) {
+    for (int p = a.row_ptr[i]; p < a.row_ptr[i + 1]; ++p) {
+      double* b = a.block(p);
+      for (int k = 0; k < nb * nb; ++k)
+        b[k] = 0.2 * u(rng);
+      // a convection-diffusion-like M-matrix part: -1 off the diagonal, 4.4 on it
+      for (int k = 0; k < nb; ++k)
+        b[(nb + 1) * k] += a.col[p] == i ? 4.4 : -1.0;
+    }
+  }
+  std::vector<double> x_true(nb * n), b;
+  for (auto& v : x_true)
+    v = u(rng);
+  a.multiply(x_true, b);
+  std::size_t previous_blocks = 0;
+  int previous_iterations = 1000;
+  for (int level : {0, 1, 2, 3}) {
+    BlockIlu0 ilu;
+    ilu.factorize(a, 1, level);
+    EXPECT_GT(ilu.factor_blocks(), previous_blocks);
+    previous_blocks = ilu.factor_blocks();
+    std::vector<double> x;
+    const GmresResult r = gmres(a, ilu, b, x, 1e-10, 50, 200);
+    EXPECT_LE(r.relative_residual, 1e-10) << "level " << level;
+    EXPECT_LE(r.iterations, previous_iterations) << "level " << level;
+    previous_iterations = r.iterations;
+    std::printf("ILU(%d): %zu blocks, %d GMRES iterations\n", level, ilu.factor_blocks(),
+                r.iterations);
+  }
+  BlockIlu0 exact;
+  exact.factorize(a, 1, 2 * m);  // fills the whole band: the exact LU
+  std::vector<double> x;
+  exact.apply(b, x);
+  double err = 0.0;
+  for (int k = 0; k < nb * n; ++k)
+    err = std::max(err, std::abs(x[k] - x_true[k]));
+  EXPECT_LT(err, 1e-4);
+  // the same object refactorised at another level and with partitions
+  exact.factorize(a, 2, 1);
+  const GmresResult r = gmres(a, exact, b, x, 1e-10, 50, 200);
+  EXPECT_LE(r.relative_residual, 1e-10);
+}
 
 TEST(LinearSolver, UnsupportedBlockSizeIsRefused) {
   EXPECT_THROW(make_pattern(3, {{0, 1}, {1, 2}}, 3), std::invalid_argument);

@@ -285,10 +285,98 @@ BlockSparseMatrix make_pattern(int n, const std::vector<std::array<int, 2>>& edg
   return m;
 }
 
-void BlockIlu0::factorize(const BlockSparseMatrix& a, int partitions) {
-  lu_ = a;
-  const int n = lu_.num_rows;
-  partitions_ = std::max(1, std::min(partitions, n));
+void BlockIlu0::build_fill_pattern(const BlockSparseMatrix& a) {
+  // Symbolic ILU(k) row by row (Saad 2003, algorithm 10.5): the row's entries start at level
+  // 0; eliminating with an earlier row k (in increasing column order) adds the entries of U's
+  // row k at lev(i,k) + lev(k,j) + 1 where that is at most fill_level_. Fill between two
+  // partitions would be dropped by the factorisation, so it is not created.
+  const int n = a.num_rows;
+  std::vector<std::vector<int>> cols(n), levels(n);
+  std::vector<int> level_of(n, -1);  // level of column c in the current row, -1 if absent
+  std::vector<int> row_cols;
+  for (int part = 0; part < partitions_; ++part) {
+    const int lo = static_cast<int>(static_cast<long>(n) * part / partitions_);
+    const int hi = static_cast<int>(static_cast<long>(n) * (part + 1) / partitions_);
+    for (int i = lo; i < hi; ++i) {
+      row_cols.clear();
+      for (int p = a.row_ptr[i]; p < a.row_ptr[i + 1]; ++p) {
+        level_of[a.col[p]] = 0;
+        row_cols.push_back(a.col[p]);
+      }
+      // eliminate in increasing column order; fill may add columns below i still to visit
+      std::sort(row_cols.begin(), row_cols.end());
+      for (std::size_t m = 0; m < row_cols.size() && row_cols[m] < i; ++m) {
+        const int k = row_cols[m];
+        if (k < lo)
+          continue;
+        const int lik = level_of[k];
+        for (std::size_t q = 0; q < cols[k].size(); ++q) {
+          const int j = cols[k][q];
+          if (j <= k || j >= hi)
+            continue;
+          const int lev = lik + levels[k][q] + 1;
+          if (lev > fill_level_)
+            continue;
+          if (level_of[j] < 0) {
+            level_of[j] = lev;
+            // keep row_cols sorted beyond m so that a new column below i is eliminated too
+            row_cols.insert(std::upper_bound(row_cols.begin() + m + 1, row_cols.end(), j), j);
+          } else {
+            level_of[j] = std::min(level_of[j], lev);
+          }
+        }
+      }
+      cols[i] = row_cols;
+      levels[i].resize(row_cols.size());
+      for (std::size_t m = 0; m < row_cols.size(); ++m) {
+        levels[i][m] = level_of[row_cols[m]];
+        level_of[row_cols[m]] = -1;
+      }
+    }
+  }
+  lu_.num_rows = n;
+  lu_.block_size = a.block_size;
+  lu_.row_ptr.assign(n + 1, 0);
+  lu_.col.clear();
+  lu_.diag_pos.assign(n, -1);
+  for (int i = 0; i < n; ++i) {
+    for (int c : cols[i]) {
+      if (c == i)
+        lu_.diag_pos[i] = static_cast<int>(lu_.col.size());
+      lu_.col.push_back(c);
+    }
+    lu_.row_ptr[i + 1] = static_cast<int>(lu_.col.size());
+  }
+  scatter_.resize(a.col.size());
+  for (int i = 0; i < n; ++i) {
+    for (int p = a.row_ptr[i]; p < a.row_ptr[i + 1]; ++p)
+      scatter_[p] = lu_.find(i, a.col[p]);
+  }
+  pattern_row_ptr_ = a.row_ptr;
+  pattern_col_ = a.col;
+}
+
+void BlockIlu0::factorize(const BlockSparseMatrix& a, int partitions, int fill_level) {
+  const int n = a.num_rows;
+  partitions = std::max(1, std::min(partitions, n));
+  if (fill_level <= 0) {
+    lu_ = a;
+    pattern_col_.clear();
+  } else {
+    if (fill_level != fill_level_ || partitions != partitions_ || a.block_size != lu_.block_size ||
+        a.row_ptr != pattern_row_ptr_ || a.col != pattern_col_) {
+      fill_level_ = fill_level;
+      partitions_ = partitions;
+      build_fill_pattern(a);
+    }
+    const int be = a.block_entries();
+    lu_.val.assign(static_cast<std::size_t>(be) * lu_.col.size(), 0.0);
+    for (std::size_t p = 0; p < scatter_.size(); ++p)
+      std::copy(a.val.begin() + be * p, a.val.begin() + be * (p + 1),
+                lu_.val.begin() + be * static_cast<std::size_t>(scatter_[p]));
+  }
+  fill_level_ = fill_level;
+  partitions_ = partitions;
   pos_of_col_.assign(n, -1);
   dispatch(lu_.block_size,
            [&](auto b) { factorize_fixed<decltype(b)::value>(lu_, pos_of_col_, partitions_); });

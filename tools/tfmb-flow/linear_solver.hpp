@@ -37,22 +37,32 @@ struct BlockSparseMatrix {
 BlockSparseMatrix make_pattern(int num_nodes, const std::vector<std::array<int, 2>>& edges,
                                int block_size = 4);
 
+// Block ILU(k) (Saad 2003, Iterative Methods for Sparse Linear Systems, 2nd ed., sec. 10.3.3:
+// level of fill). k = 0 keeps the pattern of the matrix; k >= 1 also keeps the fill-in entries
+// whose level, lev(i,j) = min over k of lev(i,k) + lev(k,j) + 1, is at most k.
 class BlockIlu0 {
  public:
-  // Factorises a copy of the matrix in the same pattern (in double precision); diagonal blocks
-  // are stored inverted. The factors used by apply() are kept in single precision: the
-  // triangular solves are memory bound, and a preconditioner needs no more digits.
-  // With partitions > 1, the rows are cut into that many contiguous ranges and couplings between
-  // ranges are dropped (block-Jacobi of ILU(0) blocks): the ranges are factorised and solved in
-  // parallel, and the result does not depend on the thread count.
-  void factorize(const BlockSparseMatrix& a, int partitions = 1);
+  // Factorises a copy of the matrix in the pattern of level `fill_level` (in double precision);
+  // diagonal blocks are stored inverted. The factors used by apply() are kept in single
+  // precision: the triangular solves are memory bound, and a preconditioner needs no more
+  // digits. With partitions > 1, the rows are cut into that many contiguous ranges and
+  // couplings between ranges are dropped (block-Jacobi of ILU blocks): the ranges are
+  // factorised and solved in parallel, and the result does not depend on the thread count.
+  // The fill pattern is computed once per matrix pattern and kept.
+  void factorize(const BlockSparseMatrix& a, int partitions = 1, int fill_level = 0);
   void apply(const std::vector<double>& b, std::vector<double>& x) const;  // x = (LU)^-1 b
+  std::size_t factor_blocks() const { return lu_.col.size(); }  // blocks stored in L and U
 
  private:
+  void build_fill_pattern(const BlockSparseMatrix& a);
   BlockSparseMatrix lu_;
   std::vector<float> factors_;  // lu_.val in single precision
   std::vector<int> pos_of_col_;
   int partitions_ = 1;
+  int fill_level_ = 0;
+  // the pattern lu_ was built for, and where each block of that matrix goes in lu_
+  std::vector<int> pattern_row_ptr_, pattern_col_;
+  std::vector<int> scatter_;
 };
 
 struct GmresResult {

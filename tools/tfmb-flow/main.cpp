@@ -107,6 +107,11 @@ int main(int argc, char** argv) {
                  "source only: diagonally dominant, but a Picard rather than a Newton step)")
       ->check(CLI::IsMember({"exact", "m-matrix"}))
       ->capture_default_str();
+  app.add_option("--ilu-fill", o.settings.ilu_fill_level,
+                 "level of fill of the block ILU preconditioner (0: ILU(0), the pattern of the "
+                 "first-order Jacobian; k: also the fill-in of level <= k)")
+      ->check(CLI::Range(0, 8))
+      ->capture_default_str();
   app.add_option("--coupling-switch-drop", o.settings.coupling_switch_drop,
                  "--turbulence-coupling auto: density residual drop from which the steps are "
                  "coupled")

@@ -1323,7 +1323,7 @@ SolveReport FlowSolver::solve() {
         }
       }
     }
-    ilu_.factorize(system_matrix(), settings_.ilu_partitions);
+    ilu_.factorize(system_matrix(), settings_.ilu_partitions, settings_.ilu_fill_level);
     GmresResult lin;
     if (settings_.order >= 2 && settings_.matrix_free) {
       // no restart: restarted GMRES(20) stagnated outright (relative residual 1.0 after 80

@@ -84,6 +84,8 @@ struct SolverSettings {
   // ILU(0) partitions (independent row ranges, see BlockIlu0): 2 lets two threads share the
   // preconditioner; the same value gives the same result on any number of threads.
   int ilu_partitions = 2;
+  // Level of fill of the block ILU preconditioner (0: ILU(0); see BlockIlu0)
+  int ilu_fill_level = 0;
   int gmres_max_iterations = 80;
   double max_relative_update = 0.5;  // largest relative change of rho or p per node and iteration
   // Coupled SA: largest change of nu_tilde per node and iteration relative to |nu_tilde| + nu.
