@@ -107,6 +107,13 @@ int main(int argc, char** argv) {
                  "source only: diagonally dominant, but a Picard rather than a Newton step)")
       ->check(CLI::IsMember({"exact", "m-matrix"}))
       ->capture_default_str();
+  app.add_option("--limiter-freeze-drop", o.settings.limiter_freeze_drop,
+                 "second order: freeze the limiter once the density residual has fallen by this "
+                 "factor (0: only after limiter-stall iterations without a new minimum); the "
+                 "frozen limiter is a fixed, valid scheme and the Newton steps then see the "
+                 "residual they drive to zero")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   app.add_option("--ilu-fill", o.settings.ilu_fill_level,
                  "level of fill of the block ILU preconditioner (0: ILU(0), the pattern of the "
                  "first-order Jacobian; k: also the fill-in of level <= k)")

@@ -1206,7 +1206,10 @@ SolveReport FlowSolver::solve() {
     // (a start with no density residual at all, e.g. fluid at rest behind a pressure jump,
     // has no reference yet)
     report.residual_drop = r_max > 0.0 ? rnorm[0] / r_max : 1.0;
-    if (rnorm[0] < r_min) {
+    // (a zero residual, the uniform state of a cold start, is no minimum to make progress from:
+    // counted as one, it made every later iteration a stall and halved the CFL ceiling every
+    // cfl_stall_iterations)
+    if (rnorm[0] < r_min && rnorm[0] > 0.0) {
       r_min = rnorm[0];
       last_minimum = it;
       last_progress = it;
