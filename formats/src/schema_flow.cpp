@@ -4,8 +4,14 @@
 namespace tfmb::formats::detail {
 
 Schema flow_schema() {
-  Schema s{"flow", "tfmb/flow", 1, 2,
-           "flow solution: node fields, wall traces, integrated thrust and mass flow", true, {}, {}};
+  Schema s{"flow",
+           "tfmb/flow",
+           1,
+           3,
+           "flow solution: node fields, wall traces, integrated thrust and mass flow",
+           true,
+           {},
+           {}};
   add_root(s, true);
   add_mesh(s);
   s.datasets.push_back(f64("/fields/point/density", {"N"}, "kg/m^3", ""));
@@ -65,6 +71,24 @@ Schema flow_schema() {
                                false));
   s.attributes.push_back(nattr("/convergence", "wall_time", "s", "wall time of the solve", 0.0,
                                std::nullopt, false));
+  s.attributes.push_back(sattr("/convergence", "stop_reason",
+                               "a run that did not converge: why it stopped (iteration limit, CFL "
+                               "collapse, repeated non-physical updates)",
+                               {}, false));
+  s.attributes.push_back(nattr("/convergence", "worst_residual_x", "m",
+                               "a run that did not converge: node with the largest density "
+                               "residual per volume at the end",
+                               std::nullopt, std::nullopt, false));
+  s.attributes.push_back(
+      nattr("/convergence", "worst_residual_y", "m", "", std::nullopt, std::nullopt, false));
+  s.attributes.push_back(nattr("/convergence", "least_relaxation", "1",
+                               "a run that did not converge: smallest fraction of the Newton "
+                               "update applied at a node in the last iteration",
+                               0.0, 1.0, false));
+  s.attributes.push_back(nattr("/convergence", "least_relaxed_x", "m", "where it was applied",
+                               std::nullopt, std::nullopt, false));
+  s.attributes.push_back(
+      nattr("/convergence", "least_relaxed_y", "m", "", std::nullopt, std::nullopt, false));
   s.attributes.push_back(nattr("/convergence", "time_average", "1",
                                "1: a time-accurate run; fields and wall traces are time means over "
                                "the statistics window, integrals those of the mean state",

@@ -157,6 +157,17 @@ TEST(FlowRun, BadInputs) {
   EXPECT_THROW(run(untagged, log), BadInput);
   // restart of another topology
   run(o, log);  // writes flow.h5 on the 21 x 6 mesh
+  {
+    // two iterations do not converge: the file says why and where, the log warns
+    const h5::Reader f(o.output);
+    EXPECT_EQ(f.attr_i64("/convergence", "converged"), 0);
+    EXPECT_EQ(f.attr_string("/convergence", "stop_reason"), "iteration limit (2) reached");
+    EXPECT_TRUE(f.has_attr("/convergence", "worst_residual_x"));
+    EXPECT_NE(log_text.str().find("not converged: iteration limit (2) reached; largest density "
+                                  "residual at ("),
+              std::string::npos)
+        << log_text.str();
+  }
   write_flowmesh(dir / "other.h5", nparc::make_mesh(22, 6));
   RunOptions other = o;
   other.mesh_file = dir / "other.h5";

@@ -493,6 +493,14 @@ RunResult run(const RunOptions& o, const Logger& log) {
                static_cast<std::int64_t>(rep.residual_evaluations));
     w.set_attr("/convergence", "residual_seconds", rep.residual_seconds);
     w.set_attr("/convergence", "wall_time", rep.wall_time);
+    if (!rep.converged && !rep.stop_reason.empty()) {
+      w.set_attr("/convergence", "stop_reason", rep.stop_reason);
+      w.set_attr("/convergence", "worst_residual_x", rep.worst_residual_at.x);
+      w.set_attr("/convergence", "worst_residual_y", rep.worst_residual_at.y);
+      w.set_attr("/convergence", "least_relaxation", rep.least_relaxation);
+      w.set_attr("/convergence", "least_relaxed_x", rep.least_relaxed_at.x);
+      w.set_attr("/convergence", "least_relaxed_y", rep.least_relaxed_at.y);
+    }
     if (result.time_average) {
       const TimeAccurateResult& ta = *result.time_average;
       w.set_attr("/convergence", "time_average", static_cast<std::int64_t>(1));
@@ -553,6 +561,13 @@ RunResult run(const RunOptions& o, const Logger& log) {
     w.commit();
   }
   formats::write_xdmf_sidecar(o.output);
+  if (!rep.converged && !rep.stop_reason.empty()) {
+    log.warn("not converged: " + rep.stop_reason + "; largest density residual at (" +
+             num(rep.worst_residual_at.x) + ", " + num(rep.worst_residual_at.y) +
+             ") m; last update relaxed to " + num(rep.least_relaxation) + " at (" +
+             num(rep.least_relaxed_at.x) + ", " + num(rep.least_relaxed_at.y) +
+             ") m; the last physical state is written");
+  }
   // per unit depth (planar) or for the whole axisymmetric nozzle
   const bool whole = lm.geometry == Geometry::axisymmetric;
   const std::string how =

@@ -1413,6 +1413,9 @@ SolveReport FlowSolver::solve() {
       }
     }
     apply_strong_conditions(u_);
+    report.least_relaxation = omega_min;
+    if (omega_node >= 0)
+      report.least_relaxed_at = dual_.coords[omega_node];
     if (settings_.turbulent && !coupled)
       rec.turbulence_residual = turbulence_step(cfl);
     const double limited_fraction = static_cast<double>(limited) / n;
@@ -1467,7 +1470,19 @@ SolveReport FlowSolver::solve() {
       u_ = u_good;
       if (coupled)
         nu_tilde_ = nu_good;
+      compute_residual(!limiter_frozen_);
     }
+    report.stop_reason =
+        report.backoffs > 20 ? "more than 20 returns to the last good state (non-physical updates)"
+        : collapsed > 10
+            ? "the CFL number collapsed below 1e-3 of its start value"
+            : "iteration limit (" + std::to_string(settings_.max_iterations) + ") reached";
+    int worst = 0;
+    for (int i = 1; i < n; ++i) {
+      if (std::abs(res_[i][0]) / dual_.volume[i] > std::abs(res_[worst][0]) / dual_.volume[worst])
+        worst = i;
+    }
+    report.worst_residual_at = dual_.coords[worst];
   }
   report.wall_time = std::chrono::duration<double>(clock::now() - start).count();
   report.final_cfl = cfl;

@@ -142,6 +142,12 @@ struct SolveReport {
   long linear_iterations = 0;
   int backoffs = 0;                 // CFL back-offs after non-physical states
   int coupled_from = 0;             // automatic coupling: first coupled iteration (0: none)
+  // A run that did not converge: why it stopped, where the density residual per volume was
+  // largest at the end, and where the last update was relaxed most (and by how much).
+  std::string stop_reason;
+  Vec2 worst_residual_at{};
+  Vec2 least_relaxed_at{};
+  double least_relaxation = 1.0;
   double residual_drop = 1.0;       // final density residual / reference density residual
   double residual_reference = 0.0;  // the reference used (RMS of residual/volume)
   double wall_time = 0.0;           // [s]
