@@ -250,6 +250,18 @@ ViscousRun run_viscous(int ni, int nj, double dy1, int order, int max_iterations
   s.turbulent = viscous;
   s.print_every = print_every;
   s.matrix_free = matrix_free;
+  // A/B hooks for the solver benchmark: BMG_COUPLING 0 segregated, 1 coupled, 2 automatic
+  // (default); BMG_SA_EXACT 0 the M-matrix part of the nu_tilde linearisation
+  if (const char* c = std::getenv("BMG_COUPLING")) {
+    const int k = std::atoi(c);
+    s.turbulence_coupling = k == 0   ? TurbulenceCoupling::segregated
+                            : k == 1 ? TurbulenceCoupling::coupled
+                                     : TurbulenceCoupling::automatic;
+  }
+  if (const char* c = std::getenv("BMG_SA_EXACT"))
+    s.sa_exact_jacobian = std::atoi(c) != 0;
+  if (const char* c = std::getenv("BMG_ILU_FILL"))
+    s.ilu_fill_level = std::atoi(c);
   // first order from a uniform low-speed state; second order restarted from the converged
   // first-order solution (the way tfmb-flow --restart runs it)
   s.order = 1;

@@ -36,7 +36,7 @@ struct RunOptions {
   // Second order without a restart file: converge first order first (same settings, its own
   // iteration limit), then continue at second order from that state, as a restart would.
   bool first_order_start = false;
-  std::string turbulence_coupling = "auto";   // segregated | coupled | auto (SA)
+  std::string turbulence_coupling = "segregated";  // segregated | coupled | auto (SA)
   std::string turbulence_jacobian = "exact";  // exact | m-matrix (SA's own linearisation)
   // Time-accurate run (dual time stepping) when time.time_step > 0: from the restart (or the
   // initial) state, no steady solve; flow.h5 then holds the time averages.

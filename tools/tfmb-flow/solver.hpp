@@ -111,7 +111,7 @@ struct SolverSettings {
   // Automatic: segregated steps through the start-up transient (the coupled step's nu_tilde
   // limit relaxes whole nodes there and holds the CFL down), coupled from the iteration on
   // which the density residual has fallen by coupling_switch_drop.
-  TurbulenceCoupling turbulence_coupling = TurbulenceCoupling::automatic;
+  TurbulenceCoupling turbulence_coupling = TurbulenceCoupling::segregated;
   double coupling_switch_drop = 1e-2;
   bool sa_exact_jacobian = true;     // SA: the whole linearisation (else its M-matrix part)
   bool sa_ft2 = true;                // the ft2 term of standard SA (TMR "SA"); false: SA-noft2
