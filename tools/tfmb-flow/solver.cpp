@@ -886,9 +886,10 @@ void FlowSolver::assemble_jacobian(const std::vector<double>& diag_scale) {
       const bool axi = dual_.geometry == Geometry::axisymmetric;
       const double mu_t =
           settings_.turbulent ? 0.5 * (eddy_viscosity_[i] + eddy_viscosity_[j]) : 0.0;
-      viscous_flux(gas_, settings_.viscosity, dual_.coords[i], dual_.coords[j], w_[i], w_[j],
-                   grad_[i], grad_[j], axi ? n_e : dual_.edge_normal_planar[e],
-                   axi ? norm(n_e) / norm(dual_.edge_normal_planar[e]) : 0.0, &c, mu_t);
+      const State fv0 =
+          viscous_flux(gas_, settings_.viscosity, dual_.coords[i], dual_.coords[j], w_[i], w_[j],
+                       grad_[i], grad_[j], axi ? n_e : dual_.edge_normal_planar[e],
+                       axi ? norm(n_e) / norm(dual_.edge_normal_planar[e]) : 0.0, &c, mu_t);
       const double uf = 0.5 * (w_[i][1] + w_[j][1]);
       const double vf = 0.5 * (w_[i][2] + w_[j][2]);
       const double mu_laminar =
@@ -897,10 +898,6 @@ void FlowSolver::assemble_jacobian(const std::vector<double>& diag_scale) {
       if (settings_.turbulent && turbulence_coupled_) {
         // f = F_c - F_v and F_v is affine in mu_t: one difference is its exact slope
         const double h = mu_laminar;
-        const State fv0 =
-            viscous_flux(gas_, settings_.viscosity, dual_.coords[i], dual_.coords[j], w_[i], w_[j],
-                         grad_[i], grad_[j], axi ? n_e : dual_.edge_normal_planar[e],
-                         axi ? norm(n_e) / norm(dual_.edge_normal_planar[e]) : 0.0, nullptr, mu_t);
         const State fv1 = viscous_flux(
             gas_, settings_.viscosity, dual_.coords[i], dual_.coords[j], w_[i], w_[j], grad_[i],
             grad_[j], axi ? n_e : dual_.edge_normal_planar[e],
