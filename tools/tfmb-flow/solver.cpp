@@ -435,9 +435,7 @@ void FlowSolver::turbulence_residual(bool jacobian, const std::vector<double>* d
       }
     }
     if (jacobian) {
-      sa_diag_[i] -= volume * (exact ? sa::source_derivative(nu_tilde_[i], nu[i], vorticity,
-                                                             wall_distance_[i], settings_.sa_ft2)
-                                     : src.d_source);
+      sa_diag_[i] -= volume * (exact ? src.d_source_exact : src.d_source);
     }
     if (time_dt_ > 0.0) {
       // physical time derivative (see begin_time_step)

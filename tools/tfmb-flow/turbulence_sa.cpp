@@ -93,8 +93,8 @@ Source source(double nu_tilde, double nu, double vorticity, double d, bool with_
     s.production = cb1 * (1.0 - ct3) * vorticity * nu_tilde;
     s.destruction = -cw1 * nu_tilde * nu_tilde / (d * d);
     // d(P - D)/d nu_tilde = cb1 (1 - ct3) Omega + 2 cw1 nu_tilde / d^2; both terms < 0 here
-    s.d_source = cb1 * (1.0 - ct3) * vorticity + 2.0 * cw1 * nu_tilde / (d * d);
-    s.d_source = std::min(s.d_source, 0.0);
+    s.d_source_exact = cb1 * (1.0 - ct3) * vorticity + 2.0 * cw1 * nu_tilde / (d * d);
+    s.d_source = std::min(s.d_source_exact, 0.0);
     return s;
   }
   // The whole source is linearised, exactly (forward AD): near the wall the production falls
@@ -106,7 +106,8 @@ Source source(double nu_tilde, double nu, double vorticity, double d, bool with_
                          destruction);
   s.production = production.v;
   s.destruction = destruction.v;
-  s.d_source = std::min(production.d[0] - destruction.d[0], 0.0);
+  s.d_source_exact = production.d[0] - destruction.d[0];
+  s.d_source = std::min(s.d_source_exact, 0.0);
   return s;
 }
 

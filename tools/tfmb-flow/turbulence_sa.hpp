@@ -41,6 +41,7 @@ struct Source {
   double production = 0.0;
   double destruction = 0.0;
   double d_source = 0.0;
+  double d_source_exact = 0.0;  // the whole derivative, both signs (as source_derivative())
 };
 Source source(double nu_tilde, double nu, double vorticity, double wall_distance, bool with_ft2 = true);
 
