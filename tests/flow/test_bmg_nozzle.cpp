@@ -112,8 +112,9 @@ Comparison compare_wall_pressure(const WallTrace& trace, double p0,
       if (std::abs(x_cross - x) < std::abs(shift))
         shift = x_cross - x;
     }
-    std::printf("  x %.3f in  p/pt %.4f  experiment %.3f  (%+.1f %%; computed reaches it %+.3f in away)\n",
-                x_in, p_wall, p_ref, 100.0 * (p_wall - p_ref) / p_ref, shift / kInch);
+    std::printf(
+        "  x %.3f in  p/pt %.4f  experiment %.3f  (%+.1f %%; computed reaches it %+.3f in away)\n",
+        x_in, p_wall, p_ref, 100.0 * (p_wall - p_ref) / p_ref, shift / kInch);
   }
   return c;
 }
@@ -249,7 +250,7 @@ ViscousRun run_viscous(int ni, int nj, double dy1, int order, int max_iterations
   s.viscous = viscous;
   s.turbulent = viscous;
   s.print_every = print_every;
-  s.matrix_free = matrix_free;
+  s.matrix_free = matrix_free ? MatrixFree::on : MatrixFree::off;
   // A/B hooks for the solver benchmark: BMG_COUPLING 0 segregated, 1 coupled, 2 automatic
   // (default); BMG_SA_EXACT 0 the M-matrix part of the nu_tilde linearisation
   if (const char* c = std::getenv("BMG_COUPLING")) {

@@ -86,11 +86,20 @@ int main(int argc, char** argv) {
                "with --order 2 and no --restart: converge at first order first, then continue "
                "at second order from that state (a restart from a first-order run, in one call; "
                "on by default)");
-  app.add_option("--matrix-free", o.settings.matrix_free,
-                 "second order: each pseudo-time step solves with the Jacobian of the second-order "
-                 "residual applied matrix-free, preconditioned by ILU(0) of the first-order "
-                 "Jacobian (false: the first-order Jacobian alone, cheaper per iteration but it "
-                 "caps the CFL on stretched wall layers)")
+  app.add_option("--first-order-start-drop", o.first_order_start_drop,
+                 "with the first-order start: end the first-order stage once its density residual "
+                 "has fallen by this factor (or by --residual-drop or stationarity, if first)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  app.add_option("--matrix-free", o.matrix_free,
+                 "second order: true: each pseudo-time step solves with the Jacobian of the "
+                 "second-order residual applied matrix-free (Newton-Krylov), preconditioned by ILU "
+                 "of the first-order Jacobian; false: the first-order Jacobian alone (defect "
+                 "correction, cheaper per iteration but it converges linearly and caps the CFL on "
+                 "stretched wall layers); auto: defect correction while the limiter is live, "
+                 "Newton-Krylov from the iteration on which it is frozen (--limiter-freeze-drop, "
+                 "--limiter-stall-iterations)")
+      ->check(CLI::IsMember({"false", "true", "auto"}))
       ->capture_default_str();
   app.add_option("--turbulence-coupling", o.turbulence_coupling,
                  "SA: segregated (one implicit nu_tilde step after each mean-flow step, eddy "
@@ -109,10 +118,15 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--limiter-freeze-drop", o.settings.limiter_freeze_drop,
                  "second order: freeze the limiter once the density residual has fallen by this "
-                 "factor (0: only after limiter-stall iterations without a new minimum); the "
+                 "factor (0: only after --limiter-stall-iterations without a new minimum); the "
                  "frozen limiter is a fixed, valid scheme and the Newton steps then see the "
                  "residual they drive to zero")
       ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  app.add_option("--limiter-stall-iterations", o.settings.limiter_stall_iterations,
+                 "second order: freeze the limiter when the density residual has not reached a "
+                 "new minimum for this many iterations (0: never; a chattering limiter)")
+      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   app.add_option("--ilu-fill", o.settings.ilu_fill_level,
                  "level of fill of the block ILU preconditioner (0: ILU(0), the pattern of the "
@@ -186,8 +200,9 @@ int main(int argc, char** argv) {
   app.add_option("--linear-tolerance", o.settings.linear_tolerance,
                  "[-] relative GMRES tolerance per nonlinear iteration")
       ->capture_default_str();
-  app.add_option("--matrix-free-linear-tolerance", o.settings.matrix_free_linear_tolerance,
-                 "[-] relative GMRES tolerance of the matrix-free (--matrix-free true) second-order steps")
+  app.add_option(
+         "--matrix-free-linear-tolerance", o.settings.matrix_free_linear_tolerance,
+         "[-] relative GMRES tolerance of the matrix-free (--matrix-free true) second-order steps")
       ->check(CLI::Range(1e-6, 0.5))
       ->capture_default_str();
   app.add_option("--gmres-max-iterations", o.settings.gmres_max_iterations,

@@ -174,6 +174,9 @@ RunResult run(const RunOptions& o, const Logger& log) {
   settings.turbulent = turbulent;
   settings.sa_ft2 = o.model != "sa-noft2";
   settings.sa_exact_jacobian = o.turbulence_jacobian == "exact";
+  settings.matrix_free = o.matrix_free == "true"   ? MatrixFree::on
+                         : o.matrix_free == "auto" ? MatrixFree::after_limiter_freeze
+                                                   : MatrixFree::off;
   settings.turbulence_coupling = o.turbulence_coupling == "coupled" ? TurbulenceCoupling::coupled
                                  : o.turbulence_coupling == "auto"  ? TurbulenceCoupling::automatic
                                                                    : TurbulenceCoupling::segregated;
@@ -248,11 +251,11 @@ RunResult run(const RunOptions& o, const Logger& log) {
     result.time_average = run_time_accurate(solver, time, wall_curves);
     const TimeAccurateResult& ta = *result.time_average;
     log.info("time-accurate: " + std::to_string(time.time_steps) + " steps of " +
-             num(time.time_step) + " s (" + std::to_string(ta.iterations) +
-             " inner iterations, " + std::to_string(ta.unconverged_steps) +
-             " steps short of the inner drop); mean over " + std::to_string(ta.averaged_steps) +
-             " steps, wall pressure means of the window's halves differ by " +
-             num(ta.mean_change) + " p0");
+             num(time.time_step) + " s (" + std::to_string(ta.iterations) + " inner iterations, " +
+             std::to_string(ta.unconverged_steps) + " steps short of the inner drop); mean over " +
+             std::to_string(ta.averaged_steps) +
+             " steps, wall pressure means of the window's halves differ by " + num(ta.mean_change) +
+             " p0");
     // the report of a time-accurate run: one row per physical step
     SolveReport& r = result.report;
     r.converged = ta.mean_converged;
@@ -274,6 +277,8 @@ RunResult run(const RunOptions& o, const Logger& log) {
   } else if (o.first_order_start && settings.order >= 2 && !o.restart_file) {
     SolverSettings first_settings = settings;
     first_settings.order = 1;
+    first_settings.residual_drop = std::max(settings.residual_drop, o.first_order_start_drop);
+    first_settings.residual_drop_at_cfl_ceiling = true;
     SolveReport first;
     {
       FlowSolver first_solver(lm.mesh, lm.geometry, gas, bcs, first_settings);
@@ -488,7 +493,8 @@ RunResult run(const RunOptions& o, const Logger& log) {
     w.set_attr("/convergence", "criterion", criterion);
     w.set_attr("/convergence", "iterations", static_cast<std::int64_t>(rep.iterations));
     w.set_attr("/convergence", "residual_reference", rep.residual_reference);
-    w.set_attr("/convergence", "linear_iterations", static_cast<std::int64_t>(rep.linear_iterations));
+    w.set_attr("/convergence", "linear_iterations",
+               static_cast<std::int64_t>(rep.linear_iterations));
     w.set_attr("/convergence", "residual_evaluations",
                static_cast<std::int64_t>(rep.residual_evaluations));
     w.set_attr("/convergence", "residual_seconds", rep.residual_seconds);
@@ -548,7 +554,7 @@ RunResult run(const RunOptions& o, const Logger& log) {
       << "\nlimiter = " << (settings.limiter ? "true" : "false")
       << "\nvenkat_wang = " << settings.venkat_wang
       << "\nwall_aligned_aspect_ratio = " << settings.wall_aligned_aspect_ratio
-      << "\nmatrix_free = " << (settings.matrix_free ? "true" : "false")
+      << "\nmatrix_free = \"" << o.matrix_free << "\""
       << "\nfirst_order_start = " << (o.first_order_start ? "true" : "false")
       << "\nturbulence_coupling = \"" << o.turbulence_coupling << "\""
       << "\nturbulence_jacobian = \"" << o.turbulence_jacobian << "\""
@@ -570,19 +576,19 @@ RunResult run(const RunOptions& o, const Logger& log) {
   }
   // per unit depth (planar) or for the whole axisymmetric nozzle
   const bool whole = lm.geometry == Geometry::axisymmetric;
-  const std::string how =
-      result.time_average
-          ? "time average over " + std::to_string(result.time_average->averaged_steps) +
-                " steps " + (rep.converged ? "converged" : "NOT converged") +
-                " (halves differ by " + num(result.time_average->mean_change) + " p0), " +
-                std::to_string(rep.iterations) + " inner iterations"
-          : std::string(rep.converged ? "converged" : "NOT converged") + " in " +
-                std::to_string(rep.iterations) + " iterations";
+  const std::string how = result.time_average
+                              ? "time average over " +
+                                    std::to_string(result.time_average->averaged_steps) +
+                                    " steps " + (rep.converged ? "converged" : "NOT converged") +
+                                    " (halves differ by " + num(result.time_average->mean_change) +
+                                    " p0), " + std::to_string(rep.iterations) + " inner iterations"
+                              : std::string(rep.converged ? "converged" : "NOT converged") +
+                                    " in " + std::to_string(rep.iterations) + " iterations";
   log.summary("wrote " + o.output.string() + ": " + how + " (" +
               std::to_string(rep.linear_iterations) + " linear), residual drop " +
-              num(rep.residual_drop) + ", mass flow " + num(result.mass_flow) + (whole ? " kg/s" : " kg/(s m)") +
-              ", thrust " + num(result.thrust_x) + (whole ? " N" : " N/m") + ", " +
-              num(rep.wall_time) + " s");
+              num(rep.residual_drop) + ", mass flow " + num(result.mass_flow) +
+              (whole ? " kg/s" : " kg/(s m)") + ", thrust " + num(result.thrust_x) +
+              (whole ? " N" : " N/m") + ", " + num(rep.wall_time) + " s");
   return result;
 }
 
