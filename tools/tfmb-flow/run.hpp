@@ -42,7 +42,7 @@ struct RunOptions {
   // after first-order drops of 4e-3 and 1e-8, tools/tfmb-flow/README.md).
   double first_order_start_drop = 1e-3;
   std::string turbulence_coupling = "segregated";  // segregated | coupled | auto (SA)
-  std::string matrix_free = "false";               // false | true | auto (second order)
+  std::string matrix_free = "auto";                // false | true | auto (second order)
   std::string turbulence_jacobian = "exact";       // exact | m-matrix (SA's own linearisation)
   // Time-accurate run (dual time stepping) when time.time_step > 0: from the restart (or the
   // initial) state, no steady solve; flow.h5 then holds the time averages.

@@ -46,12 +46,12 @@ struct SolverSettings {
   // Phys. 193:357). false: the first-order Jacobian itself (defect correction), whose mismatch
   // with the second-order residual caps the CFL number on stretched wall layers.
   // after_limiter_freeze: defect correction while the limiter is live, then Newton-Krylov from
-  // the iteration on which it is frozen (limiter_freeze_drop, limiter_stall_iterations; at once
-  // without a limiter). A live limiter is not differentiable: on a shock it chatters, and
-  // Newton steps through it stalled or diverged (NPARC 0.75: drop 0.34 after 540 iterations),
-  // while defect correction, robust there, converges only linearly once the limiter is frozen
-  // (NPARC 0.75 240 x 60: 70 more iterations for 5 orders; Newton-Krylov: 18).
-  MatrixFree matrix_free = MatrixFree::off;
+  // the iteration on which it is frozen (limiter_freeze_drop, limiter_stall_iterations; without
+  // a limiter, on which those criteria are met). A live limiter is not differentiable: on a shock
+  // it chatters, and Newton steps through it stalled or diverged (NPARC 0.75: drop 0.34 after 540
+  // iterations), while defect correction, robust there, converges only linearly once the limiter is
+  // frozen (NPARC 0.75 240 x 60: 70 more iterations for 5 orders; Newton-Krylov: 18).
+  MatrixFree matrix_free = MatrixFree::after_limiter_freeze;
   // Freeze the limiter once the density residual has dropped by this factor (0: never), or when
   // it has not reached a new minimum for limiter_stall_iterations; stops limiter chatter from
   // stalling convergence near shocks (the frozen limiter is a fixed, valid scheme).
