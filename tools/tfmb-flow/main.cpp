@@ -123,6 +123,11 @@ int main(int argc, char** argv) {
                  "residual they drive to zero")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
+  app.add_option("--eisenstat-walker", o.settings.eisenstat_walker,
+                 "matrix-free steps: GMRES tolerance by Eisenstat-Walker forcing (tighter as the "
+                 "residual falls faster, down to 1e-3; --matrix-free-linear-tolerance the "
+                 "loosest) instead of the fixed tolerance")
+      ->capture_default_str();
   app.add_option("--limiter-stall-iterations", o.settings.limiter_stall_iterations,
                  "second order: freeze the limiter when the density residual has not reached a "
                  "new minimum for this many iterations (0: never; a chattering limiter)")

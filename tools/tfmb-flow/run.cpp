@@ -556,6 +556,9 @@ RunResult run(const RunOptions& o, const Logger& log) {
       << "\nwall_aligned_aspect_ratio = " << settings.wall_aligned_aspect_ratio
       << "\nmatrix_free = \"" << o.matrix_free << "\""
       << "\nfirst_order_start = " << (o.first_order_start ? "true" : "false")
+      << "\nfirst_order_start_drop = " << o.first_order_start_drop
+      << "\neisenstat_walker = " << (settings.eisenstat_walker ? "true" : "false")
+      << "\nlimiter_stall_iterations = " << settings.limiter_stall_iterations
       << "\nturbulence_coupling = \"" << o.turbulence_coupling << "\""
       << "\nturbulence_jacobian = \"" << o.turbulence_jacobian << "\""
       << "\nthreads = " << settings.threads << "\n";
