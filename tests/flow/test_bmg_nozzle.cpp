@@ -263,6 +263,15 @@ ViscousRun run_viscous(int ni, int nj, double dy1, int order, int max_iterations
     s.sa_exact_jacobian = std::atoi(c) != 0;
   if (const char* c = std::getenv("BMG_ILU_FILL"))
     s.ilu_fill_level = std::atoi(c);
+  // BMG_MATRIX_FREE=2: --matrix-free auto; BMG_FIRST_DROP: end the first-order stage at this
+  // drop at the CFL ceiling, as tfmb-flow's first-order start does (--first-order-start-drop)
+  if (std::getenv("BMG_MATRIX_FREE") && std::atoi(std::getenv("BMG_MATRIX_FREE")) == 2)
+    s.matrix_free = MatrixFree::after_limiter_freeze;
+  const double final_drop = s.residual_drop;
+  if (const char* c = std::getenv("BMG_FIRST_DROP"); c && order >= 2) {
+    s.residual_drop = std::atof(c);
+    s.residual_drop_at_cfl_ceiling = true;
+  }
   // first order from a uniform low-speed state; second order restarted from the converged
   // first-order solution (the way tfmb-flow --restart runs it)
   s.order = 1;
@@ -273,6 +282,10 @@ ViscousRun run_viscous(int ni, int nj, double dy1, int order, int max_iterations
   run.nodes = mesh.num_points();
   run.first_order = first.solve();
   s.order = order;
+  s.residual_drop = final_drop;
+  s.residual_drop_at_cfl_ceiling = false;
+  if (std::getenv("BMG_FIRST_DROP"))
+    s.residual_reference = run.first_order.residual_reference;  // as tfmb-flow's second stage
   FlowSolver solver(mesh, Geometry::axisymmetric, gas, {axis, out, wall, in}, s);
   if (order == 1) {
     run.report = run.first_order;
