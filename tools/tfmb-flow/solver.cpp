@@ -49,6 +49,10 @@ class ScopedThreads {
 // it gives is little more than a guess (see the CFL control in solve()).
 constexpr double kLinearSolveFailed = 0.5;
 
+// Newton-Krylov phases of MatrixFree::after_limiter_freeze that may fail before a run stays
+// with defect correction and a live limiter
+constexpr int kNewtonFallbacks = 3;
+
 // Smallest pressure accepted, relative to the total energy per volume rho E (see physical()).
 constexpr double kPressureFloor = 1e-10;
 
@@ -1140,12 +1144,17 @@ SolveReport FlowSolver::solve() {
   // after_limiter_freeze from the iteration on which the limiter is frozen (without a limiter:
   // on which the same criteria are met; Newton steps from a cold start did not converge the
   // laminar pipe of PipePoiseuille in 400 iterations)
-  auto newton_steps = [this] {
-    return settings_.order >= 2 &&
-           (settings_.matrix_free == MatrixFree::on ||
-            (settings_.matrix_free == MatrixFree::after_limiter_freeze && limiter_frozen_));
+  int newton_fallbacks = 0;  // Newton phases abandoned (see below)
+  auto newton_steps = [this, &newton_fallbacks] {
+    return settings_.order >= 2 && (settings_.matrix_free == MatrixFree::on ||
+                                    (settings_.matrix_free == MatrixFree::after_limiter_freeze &&
+                                     limiter_frozen_ && newton_fallbacks < kNewtonFallbacks));
   };
   int newton_from = 0;  // first Newton-Krylov iteration of an after_limiter_freeze run
+  // the state, residual and CFL number where the Newton phase began (its last good state)
+  std::vector<State> newton_start_u;
+  std::vector<double> newton_start_nu;
+  double newton_start_residual = 0.0, newton_start_cfl = 0.0, newton_start_ceiling = 0.0;
   // Eisenstat-Walker forcing: the previous Newton step's density residual and tolerance
   double newton_residual_previous = 0.0;
   double forcing_previous = settings_.matrix_free_linear_tolerance;
@@ -1248,9 +1257,40 @@ SolveReport FlowSolver::solve() {
     }
     if ((settings_.limiter_freeze_drop > 0.0 &&
          report.residual_drop < settings_.limiter_freeze_drop) ||
-        (settings_.limiter_stall_iterations > 0 &&
+        (settings_.limiter_stall_iterations > 0 && newton_fallbacks < kNewtonFallbacks &&
          it - last_minimum > settings_.limiter_stall_iterations)) {
       limiter_frozen_ = true;
+    }
+    if (newton_from > 0 && settings_.matrix_free == MatrixFree::after_limiter_freeze &&
+        (rnorm[0] > 3.0 * newton_start_residual ||
+         (it - newton_from >= std::max(settings_.limiter_stall_iterations, 10) &&
+          rnorm[0] > newton_start_residual))) {
+      // The Newton phase failed: the limiter froze inside a transient (nasa-2dcd NPR 2.412: the
+      // stall rule froze it while the separation still moved, and the Newton steps relaxed to
+      // nothing behind the lips). Back to its start, limiter live, defect correction, and a new
+      // stall count before the limiter may freeze again. After the last allowed failure the
+      // stall rule freezes it no more: there, defect correction with the live limiter converged
+      // (423 iterations) where the frozen one had not after 770.
+      ++newton_fallbacks;
+      if (settings_.print_every > 0)
+        std::fprintf(stderr,
+                     "iter %5d  Newton-Krylov phase from iteration %d abandoned (residual %.2e "
+                     "against %.2e at its start): back to that state, limiter live%s\n",
+                     it, newton_from, rnorm[0], newton_start_residual,
+                     newton_fallbacks < kNewtonFallbacks ? "" : ", defect correction from here on");
+      u_ = newton_start_u;
+      if (!newton_start_nu.empty())
+        nu_tilde_ = newton_start_nu;
+      limiter_frozen_ = false;
+      newton_from = 0;
+      last_minimum = last_progress = it;
+      cfl_scale *= 0.5;
+      cfl = std::max(settings_.cfl_start, 0.5 * newton_start_cfl);
+      // the defect-correction ceiling, lowered by its stalls, not the Newton phase's (at 1e4 the
+      // segregated SA step blew up at NPR 2.412 within 100 iterations of the last fallback)
+      cfl_ceiling = newton_start_ceiling;
+      report.newton_fallbacks = newton_fallbacks;
+      continue;
     }
     if (it > 1) {
       const double ser =
@@ -1345,6 +1385,11 @@ SolveReport FlowSolver::solve() {
     if (newton_steps()) {
       if (newton_from == 0 && settings_.matrix_free == MatrixFree::after_limiter_freeze) {
         newton_from = report.newton_from = it;
+        newton_start_u = u_;
+        newton_start_nu = nu_tilde_;
+        newton_start_residual = r_previous;
+        newton_start_cfl = cfl;
+        newton_start_ceiling = cfl_ceiling;
         // the Newton-Krylov operator is the derivative of the residual: no reason to hold the
         // pseudo time step at the defect-correction ceiling
         cfl_ceiling = std::max(cfl_ceiling, settings_.newton_cfl_max);

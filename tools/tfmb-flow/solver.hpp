@@ -168,6 +168,7 @@ struct SolveReport {
   int backoffs = 0;      // CFL back-offs after non-physical states
   int coupled_from = 0;  // automatic coupling: first coupled iteration (0: none)
   int newton_from = 0;  // MatrixFree::after_limiter_freeze: first Newton-Krylov iteration (0: none)
+  int newton_fallbacks = 0;  // ... and its Newton phases abandoned for defect correction
   // A run that did not converge: why it stopped, where the density residual per volume was
   // largest at the end, and where the last update was relaxed most (and by how much).
   std::string stop_reason;
