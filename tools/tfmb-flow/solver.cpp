@@ -1154,7 +1154,7 @@ SolveReport FlowSolver::solve() {
   // the state, residual and CFL number where the Newton phase began (its last good state)
   std::vector<State> newton_start_u;
   std::vector<double> newton_start_nu;
-  double newton_start_residual = 0.0, newton_start_cfl = 0.0, newton_start_ceiling = 0.0;
+  double newton_start_residual = 0.0, newton_start_cfl = 0.0;
   // Eisenstat-Walker forcing: the previous Newton step's density residual and tolerance
   double newton_residual_previous = 0.0;
   double forcing_previous = settings_.matrix_free_linear_tolerance;
@@ -1286,9 +1286,6 @@ SolveReport FlowSolver::solve() {
       last_minimum = last_progress = it;
       cfl_scale *= 0.5;
       cfl = std::max(settings_.cfl_start, 0.5 * newton_start_cfl);
-      // the defect-correction ceiling, lowered by its stalls, not the Newton phase's (at 1e4 the
-      // segregated SA step blew up at NPR 2.412 within 100 iterations of the last fallback)
-      cfl_ceiling = newton_start_ceiling;
       report.newton_fallbacks = newton_fallbacks;
       continue;
     }
@@ -1389,10 +1386,6 @@ SolveReport FlowSolver::solve() {
         newton_start_nu = nu_tilde_;
         newton_start_residual = r_previous;
         newton_start_cfl = cfl;
-        newton_start_ceiling = cfl_ceiling;
-        // the Newton-Krylov operator is the derivative of the residual: no reason to hold the
-        // pseudo time step at the defect-correction ceiling
-        cfl_ceiling = std::max(cfl_ceiling, settings_.newton_cfl_max);
         if (settings_.print_every > 0)
           std::fprintf(stderr,
                        "iter %5d  limiter frozen: Newton-Krylov steps from here (drop %.2e)\n", it,

@@ -103,8 +103,6 @@ struct SolverSettings {
   // floor) instead of the fixed tolerance
   bool eisenstat_walker = true;
   double eisenstat_walker_min = 1e-3;
-  // MatrixFree::after_limiter_freeze: CFL ceiling of the Newton-Krylov steps
-  double newton_cfl_max = 1e4;
   int gmres_restart = 20;
   // ILU(0) partitions (independent row ranges, see BlockIlu0): 2 lets two threads share the
   // preconditioner; the same value gives the same result on any number of threads.
