@@ -52,6 +52,10 @@ constexpr double kLinearSolveFailed = 0.5;
 // Newton-Krylov phases of MatrixFree::after_limiter_freeze that may fail before a run stays
 // with defect correction and a live limiter
 constexpr int kNewtonFallbacks = 3;
+// A march that has diverged (CFL below its start, residual kDivergedRise times its best) goes
+// back to its best state with half the CFL ceiling, at most kBestStateRestarts times
+constexpr double kDivergedRise = 10.0;
+constexpr int kBestStateRestarts = 4;
 
 // Smallest pressure accepted, relative to the total energy per volume rho E (see physical()).
 constexpr double kPressureFloor = 1e-10;
@@ -1166,6 +1170,10 @@ SolveReport FlowSolver::solve() {
   double forcing_previous = settings_.matrix_free_linear_tolerance;
   std::vector<double> residual_by_iteration;  // density residual per iteration of this solve
   int last_slow_cut = 0;
+  // the state at the lowest density residual so far (its CFL number), for a diverged march
+  std::vector<State> best_u;
+  std::vector<double> best_nu;
+  int best_iteration = 0;
   limiter_frozen_ = false;
   std::vector<double> target_total_pressure(bcs_.size());
   for (std::size_t b = 0; b < bcs_.size(); ++b)
@@ -1240,6 +1248,32 @@ SolveReport FlowSolver::solve() {
       r_min = rnorm[0];
       last_minimum = it;
       last_progress = it;
+      best_u = u_;
+      best_nu = nu_tilde_;
+      best_iteration = it;
+    } else if (newton_from == 0 && cfl < settings_.cfl_start && rnorm[0] > kDivergedRise * r_min &&
+               !best_u.empty() && report.best_state_restarts < kBestStateRestarts) {
+      // The march diverged: relaxation and SER have pulled the CFL below its start value while
+      // the residual ran away from its best. Left alone it does not come back (nasa-2dcd NPR
+      // 2.46, defect correction with a live limiter after three failed Newton phases: one wall
+      // node at the separation relaxed to nothing, the CFL fell to 1e-2 and the residual rose
+      // from 2e4 to 1e10 over 600 iterations). Back to the best state, limiter live, the CFL
+      // number from its start value and half the ceiling.
+      ++report.best_state_restarts;
+      cfl_ceiling = std::max(settings_.cfl_start, 0.5 * cfl_ceiling);
+      if (settings_.print_every > 0)
+        std::fprintf(stderr,
+                     "iter %5d  diverged (residual %.2e, %.0f times its best, CFL %.2e): back to "
+                     "the state of iteration %d, CFL ceiling %.2e\n",
+                     it, rnorm[0], rnorm[0] / r_min, cfl, best_iteration, cfl_ceiling);
+      u_ = best_u;
+      if (!best_nu.empty())
+        nu_tilde_ = best_nu;
+      limiter_frozen_ = false;
+      cfl = settings_.cfl_start;
+      cfl_scale = 1.0;
+      last_progress = last_minimum = it;
+      continue;
     }
     if (settings_.cfl_stall_iterations > 0 && it - last_progress > settings_.cfl_stall_iterations) {
       // only a stall at (near) the ceiling is a large-CFL limit cycle; a low CFL is SER's doing

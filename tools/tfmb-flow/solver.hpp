@@ -167,6 +167,7 @@ struct SolveReport {
   int coupled_from = 0;  // automatic coupling: first coupled iteration (0: none)
   int newton_from = 0;  // MatrixFree::after_limiter_freeze: first Newton-Krylov iteration (0: none)
   int newton_fallbacks = 0;  // ... and its Newton phases abandoned for defect correction
+  int best_state_restarts = 0;  // returns to the best state after the march diverged
   // A run that did not converge: why it stopped, where the density residual per volume was
   // largest at the end, and where the last update was relaxed most (and by how much).
   std::string stop_reason;
