@@ -293,3 +293,50 @@ TEST(FlowRun, TimeAccurateRunOfASteadyFlowWritesItsMean) {
   EXPECT_THROW(run(bad, log), BadInput);
   std::filesystem::remove_all(dir);
 }
+
+// The heat-transfer probe's h on a supersonic laminar wall: the NPARC nozzle at exit ratio 0.16
+// (supersonic from the throat on) with a no-slip adiabatic wall, its cells clustered to the wall
+// (exponential, a first cell of about 1e-3 of the local height). The traced wall heat flux is a one-sided difference over
+// the first cell and holds the gradient of the viscous heating there even on the adiabatic wall;
+// taken as the probe's response, it made h negative where the flow is fast. h is the difference
+// of the probe's and the adiabatic run's evaluations, and must be positive along the whole wall
+// (the probe's wall is colder than T_aw everywhere: by the maximum principle heat flows into it).
+TEST(FlowRun, HeatTransferCoefficientIsPositiveOnASupersonicWall) {
+  const auto dir = temp_dir();
+  StructuredMeshSpec spec;
+  spec.ni = 61;
+  spec.nj = 41;
+  spec.map = [](double xi, double eta) {
+    const double x = 10.0 * xi;
+    const double beta = 5.0;  // geometric clustering to the wall at eta = 1
+    const double y = 1.0 - (std::exp(beta * (1.0 - eta)) - 1.0) / (std::exp(beta) - 1.0);
+    return Vec2{x * nparc::kInch, y * nparc::area_in(x) * nparc::kInch};
+  };
+  spec.split = [](int i, int j) { return j < 20 && (i + j) % 3 == 0; };
+  spec.bottom = "symmetry";
+  spec.right = "outlet";
+  spec.top = "wall";
+  spec.left = "inlet";
+  write_flowmesh(dir / "flowmesh.h5", structured_mesh(spec));
+  std::ostringstream log_text;
+  const Logger log("tfmb-flow", Verbosity::normal, log_text);
+  RunOptions o = nozzle_options(dir);
+  o.model = "laminar";
+  o.ambient_pressure = 0.16 * nparc::kP0;
+  o.settings.max_iterations = 600;
+  const RunResult r = run(o, log);
+  ASSERT_TRUE(r.report.converged) << log_text.str();
+  const h5::Reader f = formats::open_checked(o.output, "flow");
+  const auto x = f.read_vector("/walls/wall/x");
+  const auto h = f.read_vector("/walls/wall/heat_transfer_coefficient");
+  const auto q_adiabatic = f.read_vector("/walls/wall/heat_flux");
+  double h_min = 1e300, q_bias = 0.0;
+  for (std::size_t k = 1; k + 1 < h.size(); ++k) {  // the inlet and exit corners aside
+    h_min = std::min(h_min, h[k]);
+    q_bias = std::max(q_bias, std::abs(q_adiabatic[k]));
+  }
+  std::printf("supersonic laminar wall: h min %.1f W/(m^2 K); adiabatic run's traced |q| up to "
+              "%.0f W/m^2 (20 K probe)\n", h_min, q_bias);
+  EXPECT_GT(h_min, 0.0);
+  std::filesystem::remove_all(dir);
+}
