@@ -1174,7 +1174,8 @@ SolveReport FlowSolver::solve() {
   std::vector<State> best_u;
   std::vector<double> best_nu;
   int best_iteration = 0;
-  limiter_frozen_ = false;
+  limiter_frozen_ = hold_limiter_;
+  hold_limiter_ = false;
   std::vector<double> target_total_pressure(bcs_.size());
   for (std::size_t b = 0; b < bcs_.size(); ++b)
     target_total_pressure[b] = bcs_[b].total_pressure;

@@ -232,6 +232,10 @@ class FlowSolver {
   // minus `below` [K], node by node: the probe run of the heat transfer coefficient
   // h = q_w / (T_aw - T_w) (see run.cpp).
   void make_walls_isothermal(double below);
+  // The next solve() starts with the limiter frozen at its last values (those of the state the
+  // previous solve ended in), instead of evaluating it afresh: for a small change of a converged
+  // state, such as the probe's wall temperature, a linearisation about that state.
+  void hold_limiter() { hold_limiter_ = true; }
   void set_residual_reference(double reference) { settings_.residual_reference = reference; }
   // Dual time stepping (Jameson 1991, AIAA 91-1596): from this call on, the residual holds the
   // physical time derivative V dU/dt by the second-order backward difference
@@ -347,6 +351,7 @@ class FlowSolver {
   ScalarIlu0 sa_ilu_;
   GmresWorkspace gmres_workspace_;
   bool limiter_frozen_ = false;
+  bool hold_limiter_ = false;  // see hold_limiter()
   long residual_evaluations_ = 0;  // since construction (see SolveReport)
   double residual_seconds_ = 0.0;
   // dual time stepping: dt, the backward-difference coefficients a0 U - a1 U^n + a2 U^(n-1),
