@@ -378,11 +378,11 @@ RunResult run(const RunOptions& o, const Logger& log) {
   const double heat_transfer_dt = o.heat_transfer_dt;
   if (viscous && !o.wall_temperature && heat_transfer_dt > 0.0) {
     solver.make_walls_isothermal(heat_transfer_dt);
-    // A 20 K change of a converged state: with the limiter evaluated afresh the probe went
-    // through failed Newton phases and relaxed to nothing at the lip corners (config1 at
-    // second-order SA, 52,717 nodes), and stopped by wall-pressure stationarity before its heat
-    // flux had settled there (h negative along the last flap). Held at the converged state's
-    // values, the probe is a Newton solve of the linearisation about that state.
+    // A 20 K change of a converged state. With the limiter evaluated afresh, the probe's state
+    // differs from the adiabatic one by the limiter's change too, not by the wall temperature
+    // alone (config1 at second-order SA, 52,717 nodes: h negative along the whole last flap, 187
+    // iterations; restarted with a tighter criterion, its Newton phases failed at the lip
+    // corners). Held at the converged state's values: h positive there, 78 iterations.
     solver.hold_limiter();
     solver.set_residual_reference(rep.residual_reference);
     const SolveReport probe = solver.solve();
