@@ -238,7 +238,11 @@ std::vector<Problem> validate(const h5::Reader& file, const Schema& schema, bool
       add("/", "attribute 'format_version' is '" + version + "', expected 'major.minor'");
       return problems;
     }
-    if (std::stoi(version.substr(0, dot)) != schema.major) {
+    // compared as digits: a major of more digits than an int holds is unknown, not an
+    // internal error (std::stoi threw out_of_range: exit 4 instead of 3)
+    std::string major = version.substr(0, dot);
+    major.erase(0, std::min(major.find_first_not_of('0'), major.size() - 1));
+    if (major != std::to_string(schema.major)) {
       add("/", "unknown major format_version " + version + " (this build reads " +
                    std::to_string(schema.major) + ".x); convert the file or update tfmb");
       return problems;

@@ -21,7 +21,7 @@ namespace {
 
 enum class Corruption {
   not_hdf5, truncated, missing_dataset, wrong_dtype, wrong_shape, nan_value, inf_value,
-  index_out_of_range, negative_index, unknown_major_version, wrong_kind
+  index_out_of_range, negative_index, unknown_major_version, huge_major_version, wrong_kind
 };
 
 const char* name_of(Corruption c) {
@@ -36,6 +36,7 @@ const char* name_of(Corruption c) {
     case Corruption::index_out_of_range: return "index_out_of_range";
     case Corruption::negative_index: return "negative_index";
     case Corruption::unknown_major_version: return "unknown_major_version";
+    case Corruption::huge_major_version: return "huge_major_version";
     case Corruption::wrong_kind: return "wrong_kind";
   }
   return "?";
@@ -121,6 +122,9 @@ std::string make_bad_file(const Schema& schema, Corruption corruption,
     case Corruption::unknown_major_version:
       document.attributes["/"]["format_version"].text = std::to_string(schema.major + 1) + ".0";
       break;
+    case Corruption::huge_major_version:  // more digits than any integer type holds
+      document.attributes["/"]["format_version"].text = "99999999999999999999999.0";
+      break;
     case Corruption::wrong_kind:
       document.attributes["/"]["format"].text = schema.kind == "flow" ? "tfmb/loads" : "tfmb/flow";
       break;
@@ -184,6 +188,7 @@ INSTANTIATE_TEST_SUITE_P(
                                          Corruption::inf_value, Corruption::index_out_of_range,
                                          Corruption::negative_index,
                                          Corruption::unknown_major_version,
+                                         Corruption::huge_major_version,
                                          Corruption::wrong_kind)),
     param_name);
 
