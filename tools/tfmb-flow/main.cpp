@@ -21,13 +21,12 @@ int main(int argc, char** argv) {
   tfmb::flow::RunOptions o;
   std::filesystem::path restart;
   std::optional<double> wall_temperature, throat_area;
-  app.add_option("mesh", o.mesh_file, "flow mesh (tfmb/flowmesh)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  // (no CLI::ExistingFile: a missing input is a bad input, exit 3 from its reader, as in every
+  // stage, not a usage error)
+  app.add_option("mesh", o.mesh_file, "flow mesh (tfmb/flowmesh)")->required();
   tfmb::cli::add_output_option(app, o.output, "flow file (tfmb/flow)");
   app.add_option("--restart", restart,
-                 "start from this flow file (same mesh topology, e.g. before a wall deformation)")
-      ->check(CLI::ExistingFile);
+                 "start from this flow file (same mesh topology, e.g. before a wall deformation)");
   app.add_option("--p0", o.stagnation_pressure, "[Pa] inflow total pressure");
   app.add_option("--T0", o.stagnation_temperature, "[K] inflow total temperature");
   app.add_option("--ambient-pressure", o.ambient_pressure,

@@ -19,7 +19,7 @@ int main(int argc, char** argv) {
   tfmb::cli::add_common_options(app, common);
   std::vector<std::filesystem::path> inputs;
   app.add_option("inputs", inputs, "model.h5 (tfmb/model), then optionally loads.h5 (tfmb/loads) and materials.h5 (tfmb/materials), recognised by their format")
-      ->required()->check(CLI::ExistingFile);
+      ->required();  // a missing input is a bad input (exit 3 from its reader), not a usage error
   tfmb::cli::add_output_option(app, options.output, "structure file (tfmb/structure)");
   app.add_option("--analysis", options.analysis, "static, dynamic or modal (default: the model's /analysis @time)");
   app.add_option("--load-steps", options.load_steps, "static: initial load steps (default: the model's)")->check(CLI::NonNegativeNumber);
@@ -27,8 +27,7 @@ int main(int argc, char** argv) {
   app.add_option("--time-step", options.time_step, "dynamic: time step [s] (default: the model's)")->check(CLI::NonNegativeNumber);
   app.add_option("--initial-state", options.initial_state,
                  "dynamic: continue from the final positions, rotations and velocities of an earlier dynamic "
-                 "structure.h5 of the same model (its /restart group)")
-      ->check(CLI::ExistingFile);
+                 "structure.h5 of the same model (its /restart group)");
   app.add_option("--rho-inf", options.rho_infinity, "dynamic: spectral radius at infinity of generalized-alpha [0, 1]")
       ->capture_default_str()->check(CLI::Range(0.0, 1.0));
   app.add_option("--modes", options.modes, "modal: number of modes")->capture_default_str()->check(CLI::PositiveNumber);
@@ -40,6 +39,9 @@ int main(int argc, char** argv) {
   return tfmb::cli::run_main(app, argc, argv, [&] {
     options.command_line = tfmb::cli::command_line(argc, argv);
     options.model = inputs.at(0);
+    // read only by dynamic runs, but a missing file is refused whatever the analysis
+    if (!options.initial_state.empty() && !std::filesystem::exists(options.initial_state))
+      throw tfmb::BadInput(options.initial_state.string() + ": no such file");
     for (size_t i = 1; i < inputs.size(); ++i) {
       const tfmb::h5::Reader r(inputs[i]);
       const std::string format = r.attr_string("/", "format");

@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# One exit-code rule for a missing input file across the stages (DESIGN.md: 3, bad input): every
+# tool, with the missing file in each input position the Makefile uses, exits 3 with one line
+# naming that file and writes no output. Arguments: source dir, bin dir, scratch dir.
+set -uo pipefail
+src=$1 bin=$2 scratch=$3
+db="$src/data/materials-db.h5"
+rm -rf "$scratch" && mkdir -p "$scratch"
+missing="$scratch/no-such-file.h5"
+out="$scratch/out.h5"
+failed=0
+expect_missing() {  # label, command...
+  local label=$1
+  shift
+  local rc=0
+  "$@" > "$scratch/stdout" 2> "$scratch/stderr" || rc=$?
+  if [ "$rc" -ne 3 ]; then
+    echo "FAIL $label: exit $rc, expected 3: $(head -c 300 "$scratch/stderr")"
+    failed=1
+  elif ! grep -q "no-such-file" "$scratch/stderr" || [ "$(wc -l < "$scratch/stderr")" -gt 3 ]; then
+    echo "FAIL $label: the message does not name the file in a line: $(cat "$scratch/stderr")"
+    failed=1
+  elif [ -e "$out" ]; then
+    echo "FAIL $label: wrote $out"
+    failed=1
+  else
+    echo "ok   $label"
+  fi
+  rm -f "$out"
+}
+expect_missing "tfmb-input case" "$bin/tfmb-input" "$scratch/no-such-file.toml" -o "$out"
+expect_missing "tfmb-mesh flow" "$bin/tfmb-mesh" flow "$missing" -o "$out"
+expect_missing "tfmb-mesh solid" "$bin/tfmb-mesh" solid "$missing" -o "$out"
+expect_missing "tfmb-flow mesh" "$bin/tfmb-flow" "$missing" --p0 2e5 --T0 300 -o "$out"
+expect_missing "tfmb-beam model" "$bin/tfmb-beam" "$missing" -o "$out"
+expect_missing "tfmb-heat" "$bin/tfmb-heat" "$missing" "$missing" "$missing" --db "$db" -o "$out"
+expect_missing "tfmb-heat --db" "$bin/tfmb-heat" "$missing" "$missing" "$missing" --db "$missing" -o "$out"
+expect_missing "tfmb-matmap" "$bin/tfmb-matmap" "$missing" "$missing" --db "$db" -o "$out"
+expect_missing "tfmb-loads forces" "$bin/tfmb-loads" forces "$missing" "$missing" -o "$out"
+expect_missing "tfmb-strain" "$bin/tfmb-strain" "$missing" "$missing" -o "$out"
+expect_missing "tfmb-check" "$bin/tfmb-check" "$missing"
+[ $failed -eq 0 ] && echo "missing inputs: every tool exits 3" || echo "missing inputs: some tools do not"
+exit $failed
