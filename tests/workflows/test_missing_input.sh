@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # One exit-code rule for a missing input file across the stages (DESIGN.md: 3, bad input): every
 # tool, with the missing file in each input position the Makefile uses, exits 3 with one line
-# naming that file and writes no output. Arguments: source dir, bin dir, scratch dir.
+# naming that file and writes no output; workflows/flow-args and workflows/stage answer --help.
+# Arguments: source dir, bin dir, scratch dir.
 set -uo pipefail
 src=$1 bin=$2 scratch=$3
 db="$src/data/materials-db.h5"
@@ -39,5 +40,12 @@ expect_missing "tfmb-matmap" "$bin/tfmb-matmap" "$missing" "$missing" --db "$db"
 expect_missing "tfmb-loads forces" "$bin/tfmb-loads" forces "$missing" "$missing" -o "$out"
 expect_missing "tfmb-strain" "$bin/tfmb-strain" "$missing" "$missing" -o "$out"
 expect_missing "tfmb-check" "$bin/tfmb-check" "$missing"
+# and the workflow helpers the Makefile calls answer --help with exit 0, a usage error with 2
+for helper in flow-args stage; do
+  rc=0; "$src/workflows/$helper" --help > "$scratch/help" 2>&1 || rc=$?
+  [ "$rc" -eq 0 ] && [ -s "$scratch/help" ] || { echo "FAIL workflows/$helper --help: exit $rc"; failed=1; }
+  rc=0; "$src/workflows/$helper" > /dev/null 2>&1 || rc=$?
+  [ "$rc" -eq 2 ] || { echo "FAIL workflows/$helper without arguments: exit $rc, expected 2"; failed=1; }
+done
 [ $failed -eq 0 ] && echo "missing inputs: every tool exits 3" || echo "missing inputs: some tools do not"
 exit $failed
