@@ -221,8 +221,24 @@ std::vector<T> read_numeric(const Reader& reader, hid_t file_id, const std::stri
     reader.fail(path, "wrong dtype " + info.dtype_name + ", expected " +
                           (expected == DType::float64 ? "float64" : "int64"));
   }
-  std::vector<T> values(element_count(info.shape));
   Handle dataset(H5Dopen2(file_id, path.c_str(), H5P_DEFAULT));
+  // A dataset without filters stores every value it declares; one that declares more than the
+  // file holds is corrupted (a flipped byte in its shape: 2^40 rows made every reader try to
+  // allocate 16 TB and die out of memory) and is refused before anything is allocated.
+  // (Compressed datasets may store less: tfmb writes none.)
+  double declared = sizeof(T);
+  for (std::size_t d : info.shape) declared *= static_cast<double>(d);
+  if (declared > 0.0) {
+    Handle plist(H5Dget_create_plist(dataset.get()));
+    const hsize_t stored = H5Dget_storage_size(dataset.get());
+    if (plist.valid() && H5Pget_nfilters(plist.get()) == 0 && declared > static_cast<double>(stored)) {
+      std::ostringstream what;
+      what << "shape " << shape_text(info.shape) << " declares " << declared
+           << " bytes but the file stores " << stored << " (corrupted or truncated file?)";
+      reader.fail(path, what.str());
+    }
+  }
+  std::vector<T> values(element_count(info.shape));
   if (!values.empty() &&
       H5Dread(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0) {
     reader.fail(path, "cannot read data (truncated or corrupted file?)");

@@ -6,6 +6,8 @@
 #include <functional>
 #include <limits>
 
+#include <hdf5.h>
+
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/geometry.hpp"
 #include "tfmb/common/h5.hpp"
@@ -86,6 +88,31 @@ TEST(CommonH5, ErrorsNameFileAndPath) {
   expect_located([&] { file.read_index_vector("/idx", {}, 0, 5); }, name, "/idx", "out of range");
   expect_located([&] { file.read_matrix("/m", {}, 2); }, name, "/m", "wrong shape (2,3)");
   expect_located([&] { file.attr_string("/m", "units2"); }, name, "/m", "missing attribute");
+}
+
+// A dataset whose declared shape is larger than what the file stores (here an extendible
+// dataset grown to 2^40 rows without writing them, as a flipped byte in a shape would declare):
+// refused with a located message instead of a 16 TB allocation.
+TEST(CommonH5, DeclaredShapeBeyondTheStoredDataIsRefused) {
+  const auto path = scratch("huge.h5");
+  {
+    const hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    const hsize_t dims[2] = {4, 2}, max_dims[2] = {H5S_UNLIMITED, 2}, chunk[2] = {4, 2};
+    const hid_t space = H5Screate_simple(2, dims, max_dims);
+    const hid_t plist = H5Pcreate(H5P_DATASET_CREATE);
+    H5Pset_chunk(plist, 2, chunk);
+    const hid_t dataset = H5Dcreate2(file, "/big", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, plist, H5P_DEFAULT);
+    const double values[8] = {1, 2, 3, 4, 5, 6, 7, 8};
+    H5Dwrite(dataset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values);
+    const hsize_t huge[2] = {hsize_t{1} << 40, 2};
+    H5Dset_extent(dataset, huge);
+    H5Dclose(dataset);
+    H5Pclose(plist);
+    H5Sclose(space);
+    H5Fclose(file);
+  }
+  Reader file(path);
+  expect_located([&] { file.read_matrix("/big"); }, path.string(), "/big", "declares");
 }
 
 TEST(CommonH5, NotHdf5AndMissingFile) {
