@@ -5,6 +5,7 @@
 // 2.1: flexible joints: measure_functions (+ lambda_terms, mu_terms) replace 2.0's constant
 // measure_lambda / measure_mu, which no tool read; joint kind prismatic with /axis.
 // 2.2: optional /mesh_controls@cells_per_circle (curvature-based wall spacing).
+// 2.3: optional /mesh_controls@end_cells (cells across a flap's end face).
 #include "schema_rules.hpp"
 
 namespace tfmb::formats::detail {
@@ -18,7 +19,7 @@ AttributeRule iattr(std::string object, std::string name, std::string meaning, d
 }  // namespace
 
 Schema model_schema() {
-  Schema s{"model", "tfmb/model", 2, 2,
+  Schema s{"model", "tfmb/model", 2, 3,
            "the analysis model: flaps as beams, sections, joints, supports, walls, flow domain, "
            "conditions, thermal, mesh and analysis settings",
            false, {}, {}};
@@ -157,6 +158,7 @@ Schema model_schema() {
   s.attributes.push_back(iattr("/mesh_controls", "cells_upstream", "flatplate: cells ahead of the plate", 0));
   s.attributes.push_back(nattr("/mesh_controls", "leading_edge_spacing", "m", "flatplate: streamwise spacing at the leading edge", 0.0));
   s.attributes.push_back(iattr("/mesh_controls", "cells_per_circle", "nozzle walls: spacing at most 2 pi R / cells_per_circle where the wall's radius of curvature is R (0: off; 2.2)", 0, {}, false));
+  s.attributes.push_back(iattr("/mesh_controls", "end_cells", "nozzle walls: cells across each flap end face at least (2 when absent; 2.3)", 2, {}, false));
   s.attributes.push_back(iattr("/mesh_controls", "solid_cells_per_element", "solid mesh cells along one beam element", 1));
   s.attributes.push_back(iattr("/mesh_controls", "solid_layers", "solid mesh cells through the thickness", 1));
   // Analysis settings.

@@ -326,6 +326,29 @@ TEST(FlowMesh, CellsPerCircleRefinesTheThroatArcOnly) {
   EXPECT_LT(refined.size(), plain.size() + 20);
 }
 
+TEST(FlowMesh, EndCellsResolveTheFlapEndFaces) {
+  // mesh.end_cells = N: each flap end face (B1's 5 mm thick trailing edges) gets at least N
+  // edges; the default keeps the earlier 2.
+  mesh::FlowMeshOptions options;
+  options.scale = 4.0;
+  auto end_edges = [&](const std::vector<std::string>& overrides) {
+    const auto model = load_case("nasa-2dcd", overrides);
+    mesh::FlowMeshReport report;
+    const auto m = mesh::build_flow_mesh(model, options, report, quiet());
+    std::size_t fewest = 1000000;
+    int faces = 0;
+    for (const auto& [name, b] : m.boundaries) {
+      if (name.size() < 4 || name.compare(name.size() - 4, 4, "_end") != 0) continue;
+      fewest = std::min(fewest, static_cast<std::size_t>(b.edges.rows()));
+      ++faces;
+    }
+    EXPECT_GT(faces, 0);
+    return fewest;
+  };
+  EXPECT_EQ(end_edges({}), 2u);
+  EXPECT_GE(end_edges({"mesh.end_cells=10"}), 10u);
+}
+
 TEST(FlowMesh, LayersStopBeforeTheyFoldOnAConcaveWall) {
   // The outer face of B1's flaps is the 6.8 mm throat arc offset 5 mm towards its centre: a
   // concave wall of 1.8 mm radius for the external flow. Resolved by cells_per_circle on the

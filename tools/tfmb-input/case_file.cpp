@@ -468,6 +468,7 @@ CaseSpec read_case(const std::filesystem::path& file, const std::vector<std::str
     mc.cells_upstream = k.integer("cells_upstream", 0, 0, 100000);
     mc.leading_edge_spacing = k.number("leading_edge_spacing", 0.0, 0.0, 1e3, "m");
     mc.cells_per_circle = k.integer("cells_per_circle", 0, 0, 100000);
+    mc.end_cells = k.integer("end_cells", 2, 2, 1000);
     mc.solid_cells_per_element = k.integer("solid_cells_per_element", 4, 1, 1000);
     mc.solid_layers = k.integer("solid_layers", 4, 1, 1000);
     if (k.has("first_layer_height")) {

@@ -139,6 +139,10 @@ struct MeshControls {
   // Nozzle walls: at most 2 pi R / cells_per_circle along a wall of radius of curvature R, so
   // a tight throat arc is resolved like a circle of that many cells (0: off; model 2.2).
   int cells_per_circle = 0;
+  // Nozzle walls: cells across each flap end face at least (the base behind a blunt trailing
+  // edge: config1 at second-order SA with 2 gave an asymmetric base and h < 0 next to it, 10
+  // resolved it).
+  int end_cells = 2;
   int solid_cells_per_element = 4, solid_layers = 4;
 };
 

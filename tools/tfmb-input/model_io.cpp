@@ -174,6 +174,7 @@ void write_model(const Model& model, const std::filesystem::path& file,
   w.set_attr(mc, "cells_upstream", static_cast<std::int64_t>(m.cells_upstream));
   w.set_attr(mc, "leading_edge_spacing", m.leading_edge_spacing);
   w.set_attr(mc, "cells_per_circle", static_cast<std::int64_t>(m.cells_per_circle));
+  w.set_attr(mc, "end_cells", static_cast<std::int64_t>(m.end_cells));
   w.set_attr(mc, "solid_cells_per_element", static_cast<std::int64_t>(m.solid_cells_per_element));
   w.set_attr(mc, "solid_layers", static_cast<std::int64_t>(m.solid_layers));
   const AnalysisSettings& a = model.analysis;
@@ -347,6 +348,7 @@ Model read_model(const std::filesystem::path& file) {
   m.leading_edge_spacing = r.attr_f64(mc, "leading_edge_spacing");
   // 2.2; absent in 2.0/2.1 files (off)
   if (r.has_attr(mc, "cells_per_circle")) m.cells_per_circle = static_cast<int>(r.attr_i64(mc, "cells_per_circle"));
+  if (r.has_attr(mc, "end_cells")) m.end_cells = static_cast<int>(r.attr_i64(mc, "end_cells"));
   m.solid_cells_per_element = static_cast<int>(r.attr_i64(mc, "solid_cells_per_element"));
   m.solid_layers = static_cast<int>(r.attr_i64(mc, "solid_layers"));
   AnalysisSettings& a = model.analysis;

@@ -185,7 +185,7 @@ Mesh build_flow_mesh(const Model& model, const FlowMeshOptions& options, FlowMes
     std::vector<int> min_segments;
     for (std::size_t i : run.pieces) {
       lines.push_back(&pieces[i].points);
-      min_segments.push_back(pieces[i].side == "end" ? 2 : 1);
+      min_segments.push_back(pieces[i].side == "end" ? model.mesh.end_cells : 1);
     }
     const auto parts = split_at_corners(lines, min_segments, wall_size);
     std::size_t current_piece = parts.size();
