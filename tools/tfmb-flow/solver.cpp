@@ -1170,7 +1170,7 @@ SolveReport FlowSolver::solve() {
   double forcing_previous = settings_.matrix_free_linear_tolerance;
   std::vector<double> residual_by_iteration;  // density residual per iteration of this solve
   int last_slow_cut = 0;
-  // the state at the lowest density residual so far (its CFL number), for a diverged march
+  // the state at the lowest density residual so far and its iteration, for a diverged march
   std::vector<State> best_u;
   std::vector<double> best_nu;
   int best_iteration = 0;

@@ -230,7 +230,7 @@ class FlowSolver {
 
   // Turns every adiabatic no-slip wall into an isothermal one at the current wall temperature
   // minus `below` [K], node by node: the probe run of the heat transfer coefficient
-  // h = q_w / (T_aw - T_w) (see run.cpp).
+  // h = (q_probe - q_adiabatic) / below (see run.cpp).
   void make_walls_isothermal(double below);
   // The next solve() starts with the limiter frozen at its last values (those of the state the
   // previous solve ended in), instead of evaluating it afresh: for a small change of a converged
