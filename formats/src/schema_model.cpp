@@ -6,6 +6,7 @@
 // measure_lambda / measure_mu, which no tool read; joint kind prismatic with /axis.
 // 2.2: optional /mesh_controls@cells_per_circle (curvature-based wall spacing).
 // 2.3: optional /mesh_controls@end_cells (cells across a flap's end face).
+// 2.4: support kinds sliding_clamp and sliding_pinned with /supports/*/axis.
 #include "schema_rules.hpp"
 
 namespace tfmb::formats::detail {
@@ -19,7 +20,7 @@ AttributeRule iattr(std::string object, std::string name, std::string meaning, d
 }  // namespace
 
 Schema model_schema() {
-  Schema s{"model", "tfmb/model", 2, 3,
+  Schema s{"model", "tfmb/model", 2, 4,
            "the analysis model: flaps as beams, sections, joints, supports, walls, flow domain, "
            "conditions, thermal, mesh and analysis settings",
            false, {}, {}};
@@ -98,8 +99,10 @@ Schema model_schema() {
   // Supports.
   s.attributes.push_back(sattr("/supports/*", "flap", "supported flap"));
   s.attributes.push_back(sattr("/supports/*", "end", "supported end", {"start", "end"}));
-  s.attributes.push_back(sattr("/supports/*", "kind", "support kind", {"clamp", "pinned"}));
+  s.attributes.push_back(sattr("/supports/*", "kind", "support kind",
+                               {"clamp", "pinned", "sliding_clamp", "sliding_pinned"}));
   s.datasets.push_back(f64("/supports/*/point", {"2"}, "m", "support location"));
+  s.datasets.push_back(f64("/supports/*/axis", {"2"}, "1", "sliding kinds: unit sliding direction (2.4)", false));
   // Flow domain.
   s.attributes.push_back(sattr("/domain", "kind", "domain type", {"nozzle", "channel", "flatplate", "none"}));
   s.attributes.push_back(nattr("/domain", "plenum_length", "m", "nozzle: inflow face upstream of the first flap",

@@ -87,6 +87,50 @@ fs::path scratch(const std::string& name) {
   return dir;
 }
 
+/// materials.h5 for the cantilever of write_cantilever_model: uniform thermal strain `eps` and
+/// thermal curvature `kappa` (outer wall on the right of +x, i.e. at -y) on its 3 elements.
+fs::path write_materials(const fs::path& dir, double eps, double kappa) {
+  formats::Document doc = formats::example_document(*formats::find_schema("materials"));
+  for (auto& [path, d] : doc.datasets) {
+    if (path.rfind("/flaps/sample/", 0) != 0) continue;
+    const std::string leaf = path.substr(14);
+    if (leaf == "section_stiffness" || leaf == "section_mass") {
+      d.shape = {3, 6, 6};
+      d.floats.assign(3 * 36, 0.0);
+      const double diag_k[6] = {1e7, kGA, kGA, 50.0, kEI, kEI};
+      for (int e = 0; e < 3; ++e)
+        for (int i = 0; i < 6; ++i) d.floats[36 * e + 7 * i] = leaf == "section_stiffness" ? diag_k[i] : 1.0;
+    } else if (d.dtype == h5::DType::int64) {
+      d.shape = {3};
+      d.integers.assign(3, 0);
+    } else {
+      d.shape = {3};
+      d.floats.assign(3, leaf == "thermal_strain" ? eps : leaf == "thermal_curvature" ? kappa : 1.0);
+    }
+  }
+  doc.attributes["/flaps/sample"]["outer_normal_sign"].integer = -1;
+  const fs::path file = dir / "materials.h5";
+  formats::write_document(doc, file);
+  return file;
+}
+
+/// Adds a second support "far" of `kind` at the cantilever's end (x = L), sliding along x.
+void add_far_support(const fs::path& model, const std::string& kind) {
+  formats::Document doc = formats::read_document(h5::Reader(model));
+  doc.attributes["/supports/far"] = doc.attributes["/supports/sample"];
+  doc.attributes["/supports/far"]["end"].text = "end";
+  doc.attributes["/supports/far"]["kind"].text = kind;
+  doc.groups.insert("/supports/far");
+  doc.datasets["/supports/far/point"] = doc.datasets["/supports/sample/point"];
+  doc.datasets["/supports/far/point"].floats = {kLength, 0.0};
+  doc.attributes["/supports/far/point"] = doc.attributes["/supports/sample/point"];
+  doc.datasets["/supports/far/axis"] = doc.datasets["/supports/far/point"];
+  doc.datasets["/supports/far/axis"].floats = {1.0, 0.0};
+  doc.attributes["/supports/far/axis"] = doc.attributes["/supports/sample/point"];
+  doc.attributes["/supports/far/axis"]["units"].text = "1";
+  formats::write_document(doc, model);
+}
+
 }  // namespace
 
 // Uniform load on a cantilever: tip deflection q L^4 / (8 EI) + q L^2 / (2 GA). The load is
@@ -333,28 +377,8 @@ TEST(Stage, ThermalStrainFromMaterials) {
   const fs::path dir = scratch("materials");
   beam::Options o;
   o.model = write_cantilever_model(dir);
-  formats::Document doc = formats::example_document(*formats::find_schema("materials"));
   const double eps = 1e-3, kappa = 0.02;
-  for (auto& [path, d] : doc.datasets) {
-    if (path.rfind("/flaps/sample/", 0) != 0) continue;
-    const std::string leaf = path.substr(14);
-    if (leaf == "section_stiffness" || leaf == "section_mass") {
-      d.shape = {3, 6, 6};
-      d.floats.assign(3 * 36, 0.0);
-      const double diag_k[6] = {1e7, kGA, kGA, 50.0, kEI, kEI};
-      for (int e = 0; e < 3; ++e)
-        for (int i = 0; i < 6; ++i) d.floats[36 * e + 7 * i] = leaf == "section_stiffness" ? diag_k[i] : 1.0;
-    } else if (d.dtype == h5::DType::int64) {
-      d.shape = {3};
-      d.integers.assign(3, 0);
-    } else {
-      d.shape = {3};
-      d.floats.assign(3, leaf == "thermal_strain" ? eps : leaf == "thermal_curvature" ? kappa : 1.0);
-    }
-  }
-  doc.attributes["/flaps/sample"]["outer_normal_sign"].integer = -1;
-  o.materials = dir / "materials.h5";
-  formats::write_document(doc, o.materials);
+  o.materials = write_materials(dir, eps, kappa);
   o.output = dir / "structure.h5";
   const Logger log("tfmb-beam", Verbosity::quiet);
   EXPECT_EQ(beam::run(o, log), 0);
@@ -370,6 +394,69 @@ TEST(Stage, ThermalStrainFromMaterials) {
   const std::string text((std::istreambuf_iterator<char>(x)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("Polyline"), std::string::npos);
   EXPECT_NE(text.find("structure.h5:/fields/point/displacement"), std::string::npos);
+}
+
+// Sliding supports (model 2.4) against a heated cantilever (thermal strain eps, no load), clamped
+// at x = 0. A hinge whose pin slides along the beam (sliding_pinned) or a clamp on a rail
+// (sliding_clamp) at x = L lets it grow freely: the end moves by eps L, the mechanical strain
+// and the reactions vanish. A fixed hinge there (pinned) restrains the growth: mechanical strain
+// -eps everywhere, axial force -EA eps.
+TEST(Stage, SlidingSupportLetsThermalGrowthFree) {
+  const double eps = 1e-3, ea = 1e7;
+  for (const std::string kind : {"sliding_pinned", "sliding_clamp", "pinned"}) {
+    SCOPED_TRACE(kind);
+    const fs::path dir = scratch("sliding-" + kind);
+    beam::Options o;
+    o.model = write_cantilever_model(dir);
+    add_far_support(o.model, kind);
+    o.materials = write_materials(dir, eps, 0.0);
+    o.output = dir / "structure.h5";
+    const Logger log("tfmb-beam", Verbosity::quiet);
+    ASSERT_EQ(beam::run(o, log), 0);
+    const h5::Reader r = formats::open_checked(o.output, "structure");
+    const h5::MatrixXdR strain = r.read_matrix("/fields/cell/sectional_strain");
+    const h5::MatrixXdR u = r.read_matrix("/fields/point/displacement");
+    const auto end = static_cast<Eigen::Index>(r.read_index_vector("/flaps/sample/nodes", 7, 0, u.rows()).back());
+    const auto far = r.read_vector("/joints/far/reaction");
+    const bool free = kind != "pinned";
+    for (Eigen::Index i = 0; i < strain.rows(); ++i) EXPECT_NEAR(strain(i, 0), free ? 0.0 : -eps, 1e-9);
+    EXPECT_NEAR(u(end, 0), free ? eps * kLength : 0.0, 1e-9);
+    EXPECT_NEAR(u(end, 1), 0.0, 1e-12);
+    EXPECT_NEAR(far[0], free ? 0.0 : -ea * eps, 1e-6 * ea * eps);
+    if (free) {
+      EXPECT_NEAR(r.read_vector("/joints/far/sliding")[0], eps * kLength, 1e-9);
+    }
+  }
+}
+
+// The pin in a slot turns freely, the clamp on a rail does not: a tip moment M on the cantilever
+// clamped at x = 0 and held at x = L by the sliding support. sliding_pinned: a propped
+// cantilever under an end moment, end rotation M L / (4 EI), and the support carries the lateral
+// force 3M/(2L); sliding_clamp: the moment goes into the support, the end does not turn.
+TEST(Stage, SlidingSupportsHoldOrFreeTheRotation) {
+  const double moment = 1e-2;
+  for (const std::string kind : {"sliding_pinned", "sliding_clamp"}) {
+    SCOPED_TRACE(kind);
+    const fs::path dir = scratch("sliding-moment-" + kind);
+    beam::Options o;
+    o.model = write_cantilever_model(dir);
+    add_far_support(o.model, kind);
+    o.point_loads = {"sample:end:0,0," + std::to_string(moment)};
+    o.output = dir / "structure.h5";
+    const Logger log("tfmb-beam", Verbosity::quiet);
+    ASSERT_EQ(beam::run(o, log), 0);
+    const h5::Reader r = formats::open_checked(o.output, "structure");
+    const auto far = r.read_vector("/joints/far/reaction");
+    if (kind == "sliding_pinned") {
+      // Shear flexibility (EI / (GA L^2) = 1e-4) changes both by ~1e-4 relative.
+      EXPECT_NEAR(r.read_vector("/joints/far/relative_rotation")[0], moment * kLength / (4 * kEI), 1e-3 * moment * kLength / (4 * kEI));
+      EXPECT_NEAR(std::abs(far[1]), 1.5 * moment / kLength, 1e-3 * moment);
+      EXPECT_NEAR(far[5], 0.0, 1e-12);
+    } else {
+      EXPECT_NEAR(far[1], 0.0, 1e-9);
+      EXPECT_NEAR(far[5], -moment, 1e-9);
+    }
+  }
 }
 
 // Nodal moments of loads.h5 (wall offsets) and --point-load: a tip moment M gives the tip

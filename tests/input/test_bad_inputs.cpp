@@ -183,6 +183,23 @@ TEST(BadInput, SupportNamedLikeAJoint) {
   EXPECT_NE(r.stderr_text.find("'hinge' is already used"), std::string::npos) << r.stderr_text;
 }
 
+// A sliding support's axis must not be zero; a clamp or pin has no axis (unknown key).
+TEST(BadInput, SlidingSupportAxis) {
+  auto support = [](const std::string& kind, const std::string& extra) {
+    return case_text("g.csv") + "[[support]]\nname = \"s\"\nflap = \"a\"\nend = \"start\"\nkind = \"" + kind + "\"\n" + extra;
+  };
+  const auto good = scratch_dir("input-sliding-good");
+  EXPECT_EQ(run_case(good, two_flap_csv("1,0.5"), support("sliding_pinned", "")).exit_code, 0);
+  const auto zero = scratch_dir("input-sliding-zero");
+  const auto z = run_case(zero, two_flap_csv("1,0.5"), support("sliding_clamp", "axis = [0, 0]\n"));
+  EXPECT_EQ(z.exit_code, 3);
+  EXPECT_NE(z.stderr_text.find("zero length"), std::string::npos) << z.stderr_text;
+  const auto clamp = scratch_dir("input-sliding-clamp");
+  const auto c = run_case(clamp, two_flap_csv("1,0.5"), support("clamp", "axis = [1, 0]\n"));
+  EXPECT_EQ(c.exit_code, 3);
+  EXPECT_NE(c.stderr_text.find("axis"), std::string::npos) << c.stderr_text;
+}
+
 // Prismatic joints need their sliding direction.
 TEST(BadInput, PrismaticJointAxis) {
   auto prismatic = [](const std::string& extra) {

@@ -89,3 +89,32 @@ TEST(Geometry, GeoFileCurvesAreNamedByTheirPhysicalGroup) {
   EXPECT_NEAR(curves[1].points.back().x(), 1.0, 1e-12);  // scale 0.5 applied
   EXPECT_NEAR(curves[1].points.back().y(), 0.3, 1e-12);
 }
+
+// Sliding supports (model 2.4): without `axis` the end slides along the flap's own direction at
+// that end (the beam's end segment); a stated axis is normalised; either is written to model.h5.
+TEST(Model, SlidingSupportAxisDefaultsToTheFlapDirection) {
+  const auto toml = std::filesystem::path(TFMB_SOURCE_DIR) / "cases/simple-nozzle/case.toml";
+  const auto spec = read_case(toml, {"support.upper_hinge_1.kind=sliding_pinned", "support.lower_hinge_1.kind=sliding_clamp",
+                                     "support.lower_hinge_1.axis=[3.0, -4.0]"});
+  const auto curves = read_geometry(spec.geometry.file, spec.geometry.scale, spec.geometry.curve_samples);
+  std::ostringstream sink;
+  const tfmb::Logger log("test", tfmb::Verbosity::quiet, sink);
+  const Model model = build_model(spec, curves, log);
+  int found = 0;
+  for (const Support& s : model.supports) {
+    if (s.name == "upper_hinge_1") {
+      const Flap* f = model.find_flap(s.flap);
+      const auto& c = f->reference_curve;
+      const Point d = (c[c.size() - 1] - c[c.size() - 2]).normalized();
+      EXPECT_EQ(s.kind, "sliding_pinned");
+      EXPECT_NEAR((s.axis - d).norm(), 0.0, 1e-12);
+      ++found;
+    } else if (s.name == "lower_hinge_1") {
+      EXPECT_NEAR((s.axis - Point(0.6, -0.8)).norm(), 0.0, 1e-12);
+      ++found;
+    } else {
+      EXPECT_TRUE(s.axis.isZero()) << s.name;
+    }
+  }
+  EXPECT_EQ(found, 2);
+}

@@ -287,7 +287,13 @@ SupportSpec read_support(const toml::table& table, int index, const std::filesys
   Support& s = spec.support;
   s.flap = keys.text("flap", std::nullopt);
   s.end = keys.text("end", std::nullopt, {"start", "end"});
-  s.kind = keys.text("kind", std::string("clamp"), {"clamp", "pinned"});
+  s.kind = keys.text("kind", std::string("clamp"), {"clamp", "pinned", "sliding_clamp", "sliding_pinned"});
+  if (s.slides() && keys.has("axis")) {
+    const Eigen::MatrixXd a = keys.matrix("axis", 1, 2, "1", true);
+    const Point axis(a(0, 0), a(0, 1));
+    if (!(axis.norm() > 1e-12)) keys.fail("axis", "the sliding direction has zero length");
+    s.axis = axis.normalized();
+  }
   s.name = keys.text("name", s.flap + "_" + s.end);
   keys.finish();
   return spec;

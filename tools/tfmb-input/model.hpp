@@ -74,8 +74,10 @@ struct Joint {
 struct Support {
   std::string name;
   std::string flap, end;  // end: start | end
-  std::string kind;       // clamp | pinned
+  std::string kind;       // clamp | pinned | sliding_clamp | sliding_pinned
   Point point = Point::Zero();
+  Point axis = Point::Zero();  // sliding kinds: unit sliding direction; zero: the flap's direction at the end
+  bool slides() const { return kind == "sliding_clamp" || kind == "sliding_pinned"; }
 };
 
 // One piece of the flow domain boundary; the pieces in order form the counter-clockwise loop.

@@ -111,6 +111,7 @@ void write_model(const Model& model, const std::filesystem::path& file,
     w.set_attr(g, "end", s.end);
     w.set_attr(g, "kind", s.kind);
     w.write(g + "/point", to_vector(s.point), "m", "support location");
+    if (s.slides()) w.write(g + "/axis", to_vector(s.axis), "1", "sliding direction");
   }
   const DomainSettings& d = model.domain.settings;
   w.create_group("/domain");
@@ -270,6 +271,12 @@ Model read_model(const std::filesystem::path& file) {
     s.kind = r.attr_string(g, "kind");
     const auto p = r.read_vector(g + "/point", 2);
     s.point = Point(p[0], p[1]);
+    if (s.slides()) {
+      if (!r.exists(g + "/axis")) r.fail(g, "a " + s.kind + " support needs /axis");
+      const auto a = r.read_vector(g + "/axis", 2);
+      s.axis = Point(a[0], a[1]);
+      if (!(s.axis.norm() > 1e-12)) r.fail(g + "/axis", "zero sliding direction");
+    }
     if (!model.find_flap(s.flap)) r.fail(g, "support refers to unknown flap '" + s.flap + "'");
     model.supports.push_back(s);
   }

@@ -142,8 +142,22 @@ FileModel read_model(const Options& options) {
       j.name = name;
       j.node_b = end_node(fm, f, f.attr_string(g, "flap"), f.attr_string(g, "end"), g);
       const std::string kind = f.attr_string(g, "kind");
-      j.kind = kind == "clamp" ? JointKind::clamp : JointKind::revolute;
       j.node_a = -1;
+      if (kind == "clamp") {
+        j.kind = JointKind::clamp;
+      } else if (kind == "pinned") {
+        j.kind = JointKind::revolute;
+      } else if (kind == "sliding_clamp" || kind == "sliding_pinned") {
+        // A clamp or a hinge whose end slides along /axis (model 2.4): the ground prismatic pair
+        // or the pin in a slot.
+        j.kind = kind == "sliding_clamp" ? JointKind::prismatic : JointKind::pin_in_slot;
+        if (!f.exists(g + "/axis")) f.fail(g, "a " + kind + " support needs /axis");
+        const auto a = f.read_vector(g + "/axis", 2);
+        j.axis = Eigen::Vector3d(a[0], a[1], 0.0);
+        if (!(j.axis.norm() > 1e-12)) f.fail(g + "/axis", "zero sliding direction");
+      } else {
+        f.fail(g, "support kind '" + kind + "' is not supported by this tfmb-beam version");
+      }
       m.joints.push_back(j);
       fm.joint_names.push_back(name);
     }

@@ -34,6 +34,7 @@ std::unique_ptr<Joint> make_joint(const Model& model, const JointSpec& spec) {
     case JointKind::prismatic:
     case JointKind::screw:
     case JointKind::planar_pair:
+    case JointKind::pin_in_slot:
       check_node(spec.node_a, true, "node_a");
       return detail::make_lower_pair(model, spec);
     case JointKind::clearance:

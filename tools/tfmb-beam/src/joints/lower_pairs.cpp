@@ -10,7 +10,9 @@
 //   screw        cylindrical + (e2A.e1B) cos(phi) - (e1A.e1B) sin(phi) = 0 (phi the relative
 //                rotation, an extra unknown as in the revolute joint) + e3A.d - lead phi = 0 (6)
 // Reactions: the constraint force and moment the joint applies to node_b, -B_b^T lambda.
-// Planar models: the prismatic pair only, with its two in-plane equations.
+// Planar models: the prismatic pair with its two in-plane equations (lateral offset and relative
+// turn held), and the pin in a slot, the prismatic pair's lateral equation alone (sliding along
+// the axis and turning both free: a hinge whose pin runs in a slot, or a roller support).
 #include <cmath>
 #include <string>
 
@@ -26,6 +28,7 @@ const char* kind_name(JointKind k) {
     case JointKind::prismatic: return "prismatic";
     case JointKind::screw: return "screw";
     case JointKind::planar_pair: return "planar";
+    case JointKind::pin_in_slot: return "pin-in-slot";
     default: return "lower pair";
   }
 }
@@ -41,15 +44,18 @@ class LowerPair final : public Joint {
     if (model.planar) {
       // In the x-y plane only the slider is a new pair (a spherical or cylindrical joint is a
       // revolute one there). Frame e2 = z, so e1A.d (in-plane lateral) and e3A.e1B (in-plane
-      // rotation) are its in-plane equations; the planar guides hold the rest.
-      if (spec_.kind != JointKind::prismatic)
-        throw std::invalid_argument(what + ": in a planar model only the prismatic pair is available (use a revolute joint)");
+      // rotation) are its in-plane equations; the planar guides hold the rest. The pin in a
+      // slot keeps the lateral one only.
+      if (spec_.kind != JointKind::prismatic && spec_.kind != JointKind::pin_in_slot)
+        throw std::invalid_argument(what + ": in a planar model only the prismatic pair and the pin in a slot are available (use a revolute joint)");
       if (std::abs(spec_.axis.z()) > 1e-12 * spec_.axis.norm())
         throw std::invalid_argument(what + ": in a planar model the sliding axis must lie in the x-y plane");
       e.col(2) = spec_.axis.normalized();
       e.col(1) = Eigen::Vector3d::UnitZ();
       e.col(0) = e.col(1).cross(e.col(2));
-      keep_ = {0, 2};
+      keep_ = spec_.kind == JointKind::pin_in_slot ? std::vector<int>{0} : std::vector<int>{0, 2};
+    } else if (spec_.kind == JointKind::pin_in_slot) {
+      throw std::invalid_argument(what + ": the pin in a slot is a planar joint (in 3D use a cylindrical or planar pair)");
     }
     const Node& nb = model.nodes[spec_.node_b];
     frame_b_ = nb.frame.transpose() * e;
@@ -101,7 +107,7 @@ class LowerPair final : public Joint {
         break;
       default:
         phi = {ea.col(0).dot(d), ea.col(1).dot(d), ea.col(2).dot(eb.col(0)), ea.col(2).dot(eb.col(1))};
-        if (spec_.kind == JointKind::prismatic) phi.push_back(ea.col(1).dot(eb.col(0)));
+        if (spec_.kind == JointKind::prismatic || spec_.kind == JointKind::pin_in_slot) phi.push_back(ea.col(1).dot(eb.col(0)));
         if (spec_.kind == JointKind::screw) {
           phi.push_back(ea.col(1).dot(eb.col(0)) * cos(phi_var) - ea.col(0).dot(eb.col(0)) * sin(phi_var));
           phi.push_back(ea.col(2).dot(d) - spec_.screw_lead * phi_var);
@@ -130,6 +136,8 @@ class LowerPair final : public Joint {
     if (spec_.kind != JointKind::spherical) {
       if (spec_.kind == JointKind::screw)
         o.push_back({"relative_rotation", ctx.state.joint_dofs(first_internal_dof_ - 6 * static_cast<int>(ctx.model.nodes.size())), "rad"});
+      else if (spec_.kind == JointKind::pin_in_slot)  // in-plane turn about z = e2 (e1 = e2 x e3)
+        o.push_back({"relative_rotation", std::atan2(fa.col(0).dot(fb_frame.col(2)), fa.col(2).dot(fb_frame.col(2))), "rad"});
       else if (spec_.kind != JointKind::prismatic)
         o.push_back({"relative_rotation", std::atan2(fa.col(1).dot(fb_frame.col(0)), fa.col(0).dot(fb_frame.col(0))), "rad"});
       if (spec_.kind != JointKind::planar_pair) o.push_back({"sliding", fa.col(2).dot(d), "m"});

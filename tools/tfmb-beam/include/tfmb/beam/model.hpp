@@ -74,6 +74,8 @@ enum class JointKind {
   prismatic,    // sliding along the axis only
   screw,        // rotation phi about the axis (extra unknown) with sliding screw_lead * phi
   planar_pair,  // node_b moves in the plane normal to the axis and turns about the axis only
+  // Planar models only:
+  pin_in_slot,  // node_b's pin slides along `axis` (in the x-y plane) and turns freely
 };
 
 struct FlexibleJointLaw;  // flexible_joint.hpp
