@@ -113,8 +113,14 @@ TEST(Model, SlidingSupportAxisDefaultsToTheFlapDirection) {
       EXPECT_NEAR((s.axis - Point(0.6, -0.8)).norm(), 0.0, 1e-12);
       ++found;
     } else {
-      EXPECT_TRUE(s.axis.isZero()) << s.name;
+      EXPECT_EQ(s.slides(), !s.axis.isZero()) << s.name;  // sliding in case.toml: the flap's direction
     }
   }
   EXPECT_EQ(found, 2);
+  // A support without a name is addressed by its default name <flap>_<end>.
+  const auto realistic = read_case(std::filesystem::path(TFMB_SOURCE_DIR) / "cases/realistic-nozzle/case.toml",
+                                   {"support.upper_external_end.kind=sliding_pinned"});
+  int sliding = 0;
+  for (const auto& ss : realistic.supports) sliding += ss.support.kind == "sliding_pinned";
+  EXPECT_EQ(sliding, 1);
 }

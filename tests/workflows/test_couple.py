@@ -85,4 +85,27 @@ code = subprocess.run([couple, "--iteration", "0", "--raw", "raw-1.h5", "--state
 assert code == 2, code
 lines = open("log-iqn-ils.csv").read().splitlines()
 assert lines[0].startswith("iteration,residual_norm") and len(lines) == results["iqn-ils"] + 1
+# Inner tolerance: the next flow tolerance is 1e-3 x the relative residual ||r|| / ||H(x)||,
+# within --flow-tolerance-range (default 1e-6 .. 1e-4); written with 3 significant digits.
+def next_tolerance(k, x_used, extra=()):
+    write(f"tol-raw-{k}.h5", H(x_used))
+    write(f"tol-used-{k}.h5", x_used)
+    args = [couple, "--iteration", str(k), "--raw", f"tol-raw-{k}.h5", "--state", "tol.npz",
+            "--log", "tol.csv", "-o", f"tol-next-{k}.h5", "--tolerance", "1e-12",
+            "--flow-tolerance", "flow-tolerance", *extra]
+    if k > 1:
+        args += ["--used", f"tol-used-{k}.h5"]
+    assert subprocess.run(args, capture_output=True).returncode == 10
+    return float(open("flow-tolerance").read())
+def expected(x_used, lo=1e-6, hi=1e-4):
+    relative = np.linalg.norm(H(x_used) - x_used) / np.linalg.norm(H(x_used))
+    return min(hi, max(lo, 1e-3 * relative))
+for k, (x_used, extra) in enumerate([(np.zeros(n), ()),                       # relative 1: capped
+                                     (0.99 * x_star, ()),                     # about 1e-5 x
+                                     (0.99999 * x_star, ()),                  # below the floor
+                                     (0.99999 * x_star, ("--flow-tolerance-range", "1e-9", "1e-4"))], 1):
+    lo = float(extra[1]) if extra else 1e-6
+    got, want = next_tolerance(k, x_used, extra), expected(x_used, lo)
+    assert abs(got - want) <= 5e-3 * want, (k, got, want)  # 3 significant digits
+assert "next_flow_tolerance" in open("tol.csv").readline()
 print("coupling tests passed:", results)

@@ -16,6 +16,9 @@
 int main(int argc, char** argv) {
   CLI::App app{"Steady compressible flow on a flow mesh (tfmb/flowmesh) -> flow file (tfmb/flow).",
                "tfmb-flow"};
+  // A later option overrides an earlier one, so that a workflow can append to a case's options
+  // (the two-way loop sets --stationary-tolerance from the coupling residual).
+  app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   tfmb::cli::CommonOptions common;
   tfmb::cli::add_common_options(app, common, true);
   tfmb::flow::RunOptions o;

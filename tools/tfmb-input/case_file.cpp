@@ -319,7 +319,11 @@ void apply_override(toml::table& root, const std::string& assignment) {
       toml::table* found = nullptr;
       for (auto& element : *node->as_array()) {
         auto* t = element.as_table();
-        if (t && (*t)["name"].value<std::string>() == parts[i + 1]) {
+        // A support without a name is called <flap>_<end> (read_support).
+        auto name = t ? (*t)["name"].value<std::string>() : std::nullopt;
+        if (t && !name && parts[i] == "support" && (*t)["flap"].value<std::string>() && (*t)["end"].value<std::string>())
+          name = *(*t)["flap"].value<std::string>() + "_" + *(*t)["end"].value<std::string>();
+        if (name == parts[i + 1]) {
           found = t;
         }
       }
