@@ -385,6 +385,13 @@ RunResult run(const RunOptions& o, const Logger& log) {
     // corners). Held at the converged state's values: h positive there, 78 iterations.
     solver.hold_limiter();
     solver.set_residual_reference(rep.residual_reference);
+    // Converged as far as the solution it perturbs: the probe stops once its density residual is
+    // down to the adiabatic solution's final level, or by the usual criteria. Realistic nozzle,
+    // 52k nodes: 19 probe iterations instead of 77 (wall-pressure stationarity); h moves by 2-4 %
+    // of its largest value on the flap walls (11 % on the nacelle, h ~ 50), and the flaps' beam
+    // temperatures that tfmb-heat makes of it by at most 0.9 K (mean) and 0.12 K (through the
+    // thickness), well inside what the emissivity's uncertainty moves them.
+    solver.set_residual_drop(std::max(rep.residual_drop, settings.residual_drop));
     const SolveReport probe = solver.solve();
     log.info("heat-transfer probe (walls " + num(heat_transfer_dt) +
              " K below adiabatic): " + (probe.converged ? "converged" : "NOT converged") + " in " +

@@ -237,6 +237,7 @@ class FlowSolver {
   // state, such as the probe's wall temperature, a linearisation about that state.
   void hold_limiter() { hold_limiter_ = true; }
   void set_residual_reference(double reference) { settings_.residual_reference = reference; }
+  void set_residual_drop(double drop) { settings_.residual_drop = drop; }
   // Dual time stepping (Jameson 1991, AIAA 91-1596): from this call on, the residual holds the
   // physical time derivative V dU/dt by the second-order backward difference
   // (3 U - 4 U^n + U^(n-1)) / (2 dt), the first step by the first-order one (U - U^n) / dt,
