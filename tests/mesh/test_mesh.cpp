@@ -327,8 +327,8 @@ TEST(FlowMesh, CellsPerCircleRefinesTheThroatArcOnly) {
 }
 
 TEST(FlowMesh, EndCellsResolveTheFlapEndFaces) {
-  // mesh.end_cells = N: each flap end face (B1's 5 mm thick trailing edges) gets at least N
-  // edges; the default keeps the earlier 2.
+  // mesh.end_cells = N: each flap end face (B1's 5 mm thick trailing edges) gets at least
+  // N / scale edges (at least 2); the default keeps the earlier 2.
   mesh::FlowMeshOptions options;
   options.scale = 4.0;
   auto end_edges = [&](const std::vector<std::string>& overrides) {
@@ -346,7 +346,8 @@ TEST(FlowMesh, EndCellsResolveTheFlapEndFaces) {
     return fewest;
   };
   EXPECT_EQ(end_edges({}), 2u);
-  EXPECT_GE(end_edges({"mesh.end_cells=10"}), 10u);
+  EXPECT_GE(end_edges({"mesh.end_cells=40"}), 10u);
+  EXPECT_EQ(end_edges({"mesh.end_cells=10"}), 2u);
 }
 
 TEST(FlowMesh, LayersStopBeforeTheyFoldOnAConcaveWall) {

@@ -183,9 +183,13 @@ Mesh build_flow_mesh(const Model& model, const FlowMeshOptions& options, FlowMes
   for (Run& run : runs) {
     std::vector<const Polyline*> lines;
     std::vector<int> min_segments;
+    // The end faces' cell count coarsens with --scale like every other size (rounded down, at
+    // least 2): ten cells across the 3 mm end faces of the simple nozzle among the 20 mm wall
+    // cells of a scale-4 mesh made slivers (smallest angle 1.4 deg; three: 8.8 deg).
+    const int end_cells = std::max(2, static_cast<int>(model.mesh.end_cells / scale));
     for (std::size_t i : run.pieces) {
       lines.push_back(&pieces[i].points);
-      min_segments.push_back(pieces[i].side == "end" ? model.mesh.end_cells : 1);
+      min_segments.push_back(pieces[i].side == "end" ? end_cells : 1);
     }
     const auto parts = split_at_corners(lines, min_segments, wall_size);
     std::size_t current_piece = parts.size();
