@@ -13,12 +13,15 @@ ANALYSIS = twoway
 SET += --set analysis.kind=twoway \
        --set joint.upper_12.kind=revolute_clearance --set joint.upper_12.inner_radius=0.004 \
        --set joint.upper_12.outer_radius=0.0042 --set joint.upper_12.contact_stiffness=1e10
-# Supports: the lower half's hinges slide along the wall as config1's; the upper half keeps one
-# hinge, at x = 0.50 m, and it is pinned: were it to slide, upper_1 would be a 0.25 m cantilever
-# carrying the aft flaps through the clearance joint (full mesh: 44 mm at the joint, kink 23 deg,
-# mechanical strain 1.1 % at the duct, beyond yield), which no designer would build; see
+# Supports: config1's mounts with the x = 0.25 m upper hinge gone: the remaining hinges' pins run
+# in slots along the wall. The upper half is then a determinate chain: upper_1 a 0.25 m
+# cantilever from the duct carrying the aft flaps through the clearance joint (full mesh: 44 mm
+# at the joint, kink 23 deg, mechanical strain 1.1 % at the duct, beyond yield). The alternative,
+# the x = 0.50 m upper hinge pinned (EXTRA_SET="--set support.upper_hinge_2.kind=pinned"), props
+# upper_1 through the aft flaps (SMOKE: 1.5 mm at the joint, kink 0.35 deg) but its full-mesh
+# run stops at the fifth iterate, whose restarted flow does not converge; see
 # cases/simple-nozzle/README.md.
-SET += --set 'support=[{name="upper_duct",flap="upper_1",end="start",kind="clamp"},{name="upper_hinge_2",flap="upper_2",end="end",kind="pinned"},{name="lower_duct",flap="lower_1",end="start",kind="clamp"},{name="lower_hinge_1",flap="lower_1",end="end",kind="sliding_pinned"},{name="lower_hinge_2",flap="lower_2",end="end",kind="sliding_pinned"}]'
+SET += --set 'support=[{name="upper_duct",flap="upper_1",end="start",kind="clamp"},{name="upper_hinge_2",flap="upper_2",end="end",kind="sliding_pinned"},{name="lower_duct",flap="lower_1",end="start",kind="clamp"},{name="lower_hinge_1",flap="lower_1",end="end",kind="sliding_pinned"},{name="lower_hinge_2",flap="lower_2",end="end",kind="sliding_pinned"}]'
 # Exchange: static by default (the beam solved to equilibrium in every coupling iteration,
 # iterated to convergence); EXCHANGE=dynamic is the seed's variant (0.01 s of beam dynamics per
 # exchange, seven exchanges): see Makefile.cases and cases/simple-nozzle/README.md.
