@@ -20,10 +20,15 @@ AttributeRule iattr(std::string object, std::string name, std::string meaning, d
 }  // namespace
 
 Schema model_schema() {
-  Schema s{"model", "tfmb/model", 2, 4,
+  Schema s{"model",
+           "tfmb/model",
+           2,
+           4,
            "the analysis model: flaps as beams, sections, joints, supports, walls, flow domain, "
            "conditions, thermal, mesh and analysis settings",
-           false, {}, {}};
+           false,
+           {},
+           {}};
   add_root(s, true);
   s.attributes.push_back(sattr("/", "title", "case title from case.toml", {}, false));
   // Flaps.
@@ -102,7 +107,8 @@ Schema model_schema() {
   s.attributes.push_back(sattr("/supports/*", "kind", "support kind",
                                {"clamp", "pinned", "sliding_clamp", "sliding_pinned"}));
   s.datasets.push_back(f64("/supports/*/point", {"2"}, "m", "support location"));
-  s.datasets.push_back(f64("/supports/*/axis", {"2"}, "1", "sliding kinds: unit sliding direction (2.4)", false));
+  s.datasets.push_back(
+      f64("/supports/*/axis", {"2"}, "1", "sliding kinds: unit sliding direction (2.4)", false));
   // Flow domain.
   s.attributes.push_back(sattr("/domain", "kind", "domain type", {"nozzle", "channel", "flatplate", "none"}));
   s.attributes.push_back(nattr("/domain", "plenum_length", "m", "nozzle: inflow face upstream of the first flap",

@@ -92,20 +92,24 @@ fs::path scratch(const std::string& name) {
 fs::path write_materials(const fs::path& dir, double eps, double kappa) {
   formats::Document doc = formats::example_document(*formats::find_schema("materials"));
   for (auto& [path, d] : doc.datasets) {
-    if (path.rfind("/flaps/sample/", 0) != 0) continue;
+    if (path.rfind("/flaps/sample/", 0) != 0)
+      continue;
     const std::string leaf = path.substr(14);
     if (leaf == "section_stiffness" || leaf == "section_mass") {
       d.shape = {3, 6, 6};
       d.floats.assign(3 * 36, 0.0);
       const double diag_k[6] = {1e7, kGA, kGA, 50.0, kEI, kEI};
       for (int e = 0; e < 3; ++e)
-        for (int i = 0; i < 6; ++i) d.floats[36 * e + 7 * i] = leaf == "section_stiffness" ? diag_k[i] : 1.0;
+        for (int i = 0; i < 6; ++i)
+          d.floats[36 * e + 7 * i] = leaf == "section_stiffness" ? diag_k[i] : 1.0;
     } else if (d.dtype == h5::DType::int64) {
       d.shape = {3};
       d.integers.assign(3, 0);
     } else {
       d.shape = {3};
-      d.floats.assign(3, leaf == "thermal_strain" ? eps : leaf == "thermal_curvature" ? kappa : 1.0);
+      d.floats.assign(3, leaf == "thermal_strain"      ? eps
+                         : leaf == "thermal_curvature" ? kappa
+                                                       : 1.0);
     }
   }
   doc.attributes["/flaps/sample"]["outer_normal_sign"].integer = -1;
@@ -416,10 +420,12 @@ TEST(Stage, SlidingSupportLetsThermalGrowthFree) {
     const h5::Reader r = formats::open_checked(o.output, "structure");
     const h5::MatrixXdR strain = r.read_matrix("/fields/cell/sectional_strain");
     const h5::MatrixXdR u = r.read_matrix("/fields/point/displacement");
-    const auto end = static_cast<Eigen::Index>(r.read_index_vector("/flaps/sample/nodes", 7, 0, u.rows()).back());
+    const auto end = static_cast<Eigen::Index>(
+        r.read_index_vector("/flaps/sample/nodes", 7, 0, u.rows()).back());
     const auto far = r.read_vector("/joints/far/reaction");
     const bool free = kind != "pinned";
-    for (Eigen::Index i = 0; i < strain.rows(); ++i) EXPECT_NEAR(strain(i, 0), free ? 0.0 : -eps, 1e-9);
+    for (Eigen::Index i = 0; i < strain.rows(); ++i)
+      EXPECT_NEAR(strain(i, 0), free ? 0.0 : -eps, 1e-9);
     EXPECT_NEAR(u(end, 0), free ? eps * kLength : 0.0, 1e-9);
     EXPECT_NEAR(u(end, 1), 0.0, 1e-12);
     EXPECT_NEAR(far[0], free ? 0.0 : -ea * eps, 1e-6 * ea * eps);
@@ -449,7 +455,8 @@ TEST(Stage, SlidingSupportsHoldOrFreeTheRotation) {
     const auto far = r.read_vector("/joints/far/reaction");
     if (kind == "sliding_pinned") {
       // Shear flexibility (EI / (GA L^2) = 1e-4) changes both by ~1e-4 relative.
-      EXPECT_NEAR(r.read_vector("/joints/far/relative_rotation")[0], moment * kLength / (4 * kEI), 1e-3 * moment * kLength / (4 * kEI));
+      EXPECT_NEAR(r.read_vector("/joints/far/relative_rotation")[0], moment * kLength / (4 * kEI),
+                  1e-3 * moment * kLength / (4 * kEI));
       EXPECT_NEAR(std::abs(far[1]), 1.5 * moment / kLength, 1e-3 * moment);
       EXPECT_NEAR(far[5], 0.0, 1e-12);
     } else {

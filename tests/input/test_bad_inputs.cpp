@@ -186,7 +186,9 @@ TEST(BadInput, SupportNamedLikeAJoint) {
 // A sliding support's axis must not be zero; a clamp or pin has no axis (unknown key).
 TEST(BadInput, SlidingSupportAxis) {
   auto support = [](const std::string& kind, const std::string& extra) {
-    return case_text("g.csv") + "[[support]]\nname = \"s\"\nflap = \"a\"\nend = \"start\"\nkind = \"" + kind + "\"\n" + extra;
+    return case_text("g.csv") +
+           "[[support]]\nname = \"s\"\nflap = \"a\"\nend = \"start\"\nkind = \"" + kind + "\"\n" +
+           extra;
   };
   const auto good = scratch_dir("input-sliding-good");
   EXPECT_EQ(run_case(good, two_flap_csv("1,0.5"), support("sliding_pinned", "")).exit_code, 0);

@@ -94,9 +94,11 @@ TEST(Geometry, GeoFileCurvesAreNamedByTheirPhysicalGroup) {
 // that end (the beam's end segment); a stated axis is normalised; either is written to model.h5.
 TEST(Model, SlidingSupportAxisDefaultsToTheFlapDirection) {
   const auto toml = std::filesystem::path(TFMB_SOURCE_DIR) / "cases/simple-nozzle/case.toml";
-  const auto spec = read_case(toml, {"support.upper_hinge_1.kind=sliding_pinned", "support.lower_hinge_1.kind=sliding_clamp",
-                                     "support.lower_hinge_1.axis=[3.0, -4.0]"});
-  const auto curves = read_geometry(spec.geometry.file, spec.geometry.scale, spec.geometry.curve_samples);
+  const auto spec = read_case(
+      toml, {"support.upper_hinge_1.kind=sliding_pinned",
+             "support.lower_hinge_1.kind=sliding_clamp", "support.lower_hinge_1.axis=[3.0, -4.0]"});
+  const auto curves =
+      read_geometry(spec.geometry.file, spec.geometry.scale, spec.geometry.curve_samples);
   std::ostringstream sink;
   const tfmb::Logger log("test", tfmb::Verbosity::quiet, sink);
   const Model model = build_model(spec, curves, log);
@@ -113,14 +115,17 @@ TEST(Model, SlidingSupportAxisDefaultsToTheFlapDirection) {
       EXPECT_NEAR((s.axis - Point(0.6, -0.8)).norm(), 0.0, 1e-12);
       ++found;
     } else {
-      EXPECT_EQ(s.slides(), !s.axis.isZero()) << s.name;  // sliding in case.toml: the flap's direction
+      // Sliding in case.toml: the flap's direction; clamps and pins: none.
+      EXPECT_EQ(s.slides(), !s.axis.isZero()) << s.name;
     }
   }
   EXPECT_EQ(found, 2);
   // A support without a name is addressed by its default name <flap>_<end>.
-  const auto realistic = read_case(std::filesystem::path(TFMB_SOURCE_DIR) / "cases/realistic-nozzle/case.toml",
-                                   {"support.upper_external_end.kind=sliding_pinned"});
+  const auto realistic =
+      read_case(std::filesystem::path(TFMB_SOURCE_DIR) / "cases/realistic-nozzle/case.toml",
+                {"support.upper_external_end.kind=sliding_pinned"});
   int sliding = 0;
-  for (const auto& ss : realistic.supports) sliding += ss.support.kind == "sliding_pinned";
+  for (const auto& ss : realistic.supports)
+    sliding += ss.support.kind == "sliding_pinned";
   EXPECT_EQ(sliding, 1);
 }

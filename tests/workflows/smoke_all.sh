@@ -49,7 +49,7 @@ run_case config3 oneway CASE=config3 FLOW="$flow"
 run_case config4 twoway CASE=config4 FLOW="$flow"
 run_case config5 twoway CASE=config5 FLOW="$flow"
 run_case nparc-cdv "flow plots summary" CASE=nparc-cdv
-# NASA B1 at NPR 8.91, second-order SA (case.mk): converges on the SMOKE mesh (137 iterations);
+# NASA B1 at NPR 8.91, second-order SA (case.mk): converges on the SMOKE mesh (124 iterations);
 # a smoke run would accept a stop at SMOKE's iteration limit (exit 1) and checks the files.
 run_case nasa-2dcd "flow plots summary" CASE=nasa-2dcd FLOW="$flow"
 run_case tmr-flatplate "flow plots summary" CASE=tmr-flatplate

@@ -287,11 +287,13 @@ SupportSpec read_support(const toml::table& table, int index, const std::filesys
   Support& s = spec.support;
   s.flap = keys.text("flap", std::nullopt);
   s.end = keys.text("end", std::nullopt, {"start", "end"});
-  s.kind = keys.text("kind", std::string("clamp"), {"clamp", "pinned", "sliding_clamp", "sliding_pinned"});
+  s.kind = keys.text("kind", std::string("clamp"),
+                     {"clamp", "pinned", "sliding_clamp", "sliding_pinned"});
   if (s.slides() && keys.has("axis")) {
     const Eigen::MatrixXd a = keys.matrix("axis", 1, 2, "1", true);
     const Point axis(a(0, 0), a(0, 1));
-    if (!(axis.norm() > 1e-12)) keys.fail("axis", "the sliding direction has zero length");
+    if (!(axis.norm() > 1e-12))
+      keys.fail("axis", "the sliding direction has zero length");
     s.axis = axis.normalized();
   }
   s.name = keys.text("name", s.flap + "_" + s.end);
@@ -321,7 +323,8 @@ void apply_override(toml::table& root, const std::string& assignment) {
         auto* t = element.as_table();
         // A support without a name is called <flap>_<end> (read_support).
         auto name = t ? (*t)["name"].value<std::string>() : std::nullopt;
-        if (t && !name && parts[i] == "support" && (*t)["flap"].value<std::string>() && (*t)["end"].value<std::string>())
+        if (t && !name && parts[i] == "support" && (*t)["flap"].value<std::string>() &&
+            (*t)["end"].value<std::string>())
           name = *(*t)["flap"].value<std::string>() + "_" + *(*t)["end"].value<std::string>();
         if (name == parts[i + 1]) {
           found = t;

@@ -76,7 +76,8 @@ struct Support {
   std::string flap, end;  // end: start | end
   std::string kind;       // clamp | pinned | sliding_clamp | sliding_pinned
   Point point = Point::Zero();
-  Point axis = Point::Zero();  // sliding kinds: unit sliding direction; zero: the flap's direction at the end
+  Point axis = Point::Zero();  // sliding kinds: unit sliding direction; zero: the flap's direction
+                               // at the end
   bool slides() const { return kind == "sliding_clamp" || kind == "sliding_pinned"; }
 };
 

@@ -542,7 +542,8 @@ Model build_model(const CaseSpec& spec, const std::vector<Curve>& curves, const 
       // Default sliding direction: the flap's own at that end (its beam's end segment), the
       // direction in which a hot flap grows.
       const Polyline& c = flap->reference_curve;
-      const Point d = support.end == "start" ? Point(c[1] - c[0]) : Point(c[c.size() - 1] - c[c.size() - 2]);
+      const Point d =
+          support.end == "start" ? Point(c[1] - c[0]) : Point(c[c.size() - 1] - c[c.size() - 2]);
       support.axis = d.normalized();
     }
     model.supports.push_back(support);

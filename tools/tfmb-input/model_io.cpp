@@ -111,7 +111,8 @@ void write_model(const Model& model, const std::filesystem::path& file,
     w.set_attr(g, "end", s.end);
     w.set_attr(g, "kind", s.kind);
     w.write(g + "/point", to_vector(s.point), "m", "support location");
-    if (s.slides()) w.write(g + "/axis", to_vector(s.axis), "1", "sliding direction");
+    if (s.slides())
+      w.write(g + "/axis", to_vector(s.axis), "1", "sliding direction");
   }
   const DomainSettings& d = model.domain.settings;
   w.create_group("/domain");
@@ -272,10 +273,12 @@ Model read_model(const std::filesystem::path& file) {
     const auto p = r.read_vector(g + "/point", 2);
     s.point = Point(p[0], p[1]);
     if (s.slides()) {
-      if (!r.exists(g + "/axis")) r.fail(g, "a " + s.kind + " support needs /axis");
+      if (!r.exists(g + "/axis"))
+        r.fail(g, "a " + s.kind + " support needs /axis");
       const auto a = r.read_vector(g + "/axis", 2);
       s.axis = Point(a[0], a[1]);
-      if (!(s.axis.norm() > 1e-12)) r.fail(g + "/axis", "zero sliding direction");
+      if (!(s.axis.norm() > 1e-12))
+        r.fail(g + "/axis", "zero sliding direction");
     }
     if (!model.find_flap(s.flap)) r.fail(g, "support refers to unknown flap '" + s.flap + "'");
     model.supports.push_back(s);

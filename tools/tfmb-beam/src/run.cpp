@@ -151,10 +151,12 @@ FileModel read_model(const Options& options) {
         // A clamp or a hinge whose end slides along /axis (model 2.4): the ground prismatic pair
         // or the pin in a slot.
         j.kind = kind == "sliding_clamp" ? JointKind::prismatic : JointKind::pin_in_slot;
-        if (!f.exists(g + "/axis")) f.fail(g, "a " + kind + " support needs /axis");
+        if (!f.exists(g + "/axis"))
+          f.fail(g, "a " + kind + " support needs /axis");
         const auto a = f.read_vector(g + "/axis", 2);
         j.axis = Eigen::Vector3d(a[0], a[1], 0.0);
-        if (!(j.axis.norm() > 1e-12)) f.fail(g + "/axis", "zero sliding direction");
+        if (!(j.axis.norm() > 1e-12))
+          f.fail(g + "/axis", "zero sliding direction");
       } else {
         f.fail(g, "support kind '" + kind + "' is not supported by this tfmb-beam version");
       }

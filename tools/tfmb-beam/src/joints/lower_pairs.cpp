@@ -28,7 +28,8 @@ const char* kind_name(JointKind k) {
     case JointKind::prismatic: return "prismatic";
     case JointKind::screw: return "screw";
     case JointKind::planar_pair: return "planar";
-    case JointKind::pin_in_slot: return "pin-in-slot";
+    case JointKind::pin_in_slot:
+      return "pin-in-slot";
     default: return "lower pair";
   }
 }
@@ -47,7 +48,9 @@ class LowerPair final : public Joint {
       // rotation) are its in-plane equations; the planar guides hold the rest. The pin in a
       // slot keeps the lateral one only.
       if (spec_.kind != JointKind::prismatic && spec_.kind != JointKind::pin_in_slot)
-        throw std::invalid_argument(what + ": in a planar model only the prismatic pair and the pin in a slot are available (use a revolute joint)");
+        throw std::invalid_argument(what +
+                                    ": in a planar model only the prismatic pair and the pin in a "
+                                    "slot are available (use a revolute joint)");
       if (std::abs(spec_.axis.z()) > 1e-12 * spec_.axis.norm())
         throw std::invalid_argument(what + ": in a planar model the sliding axis must lie in the x-y plane");
       e.col(2) = spec_.axis.normalized();
@@ -55,7 +58,8 @@ class LowerPair final : public Joint {
       e.col(0) = e.col(1).cross(e.col(2));
       keep_ = spec_.kind == JointKind::pin_in_slot ? std::vector<int>{0} : std::vector<int>{0, 2};
     } else if (spec_.kind == JointKind::pin_in_slot) {
-      throw std::invalid_argument(what + ": the pin in a slot is a planar joint (in 3D use a cylindrical or planar pair)");
+      throw std::invalid_argument(
+          what + ": the pin in a slot is a planar joint (in 3D use a cylindrical or planar pair)");
     }
     const Node& nb = model.nodes[spec_.node_b];
     frame_b_ = nb.frame.transpose() * e;
@@ -107,7 +111,8 @@ class LowerPair final : public Joint {
         break;
       default:
         phi = {ea.col(0).dot(d), ea.col(1).dot(d), ea.col(2).dot(eb.col(0)), ea.col(2).dot(eb.col(1))};
-        if (spec_.kind == JointKind::prismatic || spec_.kind == JointKind::pin_in_slot) phi.push_back(ea.col(1).dot(eb.col(0)));
+        if (spec_.kind == JointKind::prismatic || spec_.kind == JointKind::pin_in_slot)
+          phi.push_back(ea.col(1).dot(eb.col(0)));
         if (spec_.kind == JointKind::screw) {
           phi.push_back(ea.col(1).dot(eb.col(0)) * cos(phi_var) - ea.col(0).dot(eb.col(0)) * sin(phi_var));
           phi.push_back(ea.col(2).dot(d) - spec_.screw_lead * phi_var);
@@ -137,7 +142,9 @@ class LowerPair final : public Joint {
       if (spec_.kind == JointKind::screw)
         o.push_back({"relative_rotation", ctx.state.joint_dofs(first_internal_dof_ - 6 * static_cast<int>(ctx.model.nodes.size())), "rad"});
       else if (spec_.kind == JointKind::pin_in_slot)  // in-plane turn about z = e2 (e1 = e2 x e3)
-        o.push_back({"relative_rotation", std::atan2(fa.col(0).dot(fb_frame.col(2)), fa.col(2).dot(fb_frame.col(2))), "rad"});
+        o.push_back({"relative_rotation",
+                     std::atan2(fa.col(0).dot(fb_frame.col(2)), fa.col(2).dot(fb_frame.col(2))),
+                     "rad"});
       else if (spec_.kind != JointKind::prismatic)
         o.push_back({"relative_rotation", std::atan2(fa.col(1).dot(fb_frame.col(0)), fa.col(0).dot(fb_frame.col(0))), "rad"});
       if (spec_.kind != JointKind::planar_pair) o.push_back({"sliding", fa.col(2).dot(d), "m"});

@@ -61,12 +61,13 @@ struct DistributedLoad {
 };
 
 enum class JointKind {
-  clamp,       // node fixed in position and rotation (ground)
-  rigid,       // two nodes rigidly connected
-  revolute,    // hinge about `axis`; relative rotation phi is an extra unknown
-  clearance,   // revolute with radial clearance: pin on node_b in a hole on node_a
-  planar,      // keeps node_b in the x-y plane (z, rotations about x and y held)
-  flexible,    // bushing: elastic energy of the relative motion of node_b (handle l) w.r.t. node_a (k)
+  clamp,      // node fixed in position and rotation (ground)
+  rigid,      // two nodes rigidly connected
+  revolute,   // hinge about `axis`; relative rotation phi is an extra unknown
+  clearance,  // revolute with radial clearance: pin on node_b in a hole on node_a
+  planar,     // keeps node_b in the x-y plane (z, rotations about x and y held)
+  flexible,   // bushing: elastic energy of the relative motion of node_b (handle l) w.r.t. node_a
+              // (k)
   // Lower pairs between node_a (or the ground) and node_b, coincident in the reference
   // configuration, about/along `axis` (3D models only):
   spherical,    // common point; rotation free
