@@ -280,6 +280,11 @@ JointSpec read_joint(const toml::table& table, int index, const std::filesystem:
   return spec;
 }
 
+// The name of a [[support]] without one.
+std::string default_support_name(const std::string& flap, const std::string& end) {
+  return flap + "_" + end;
+}
+
 SupportSpec read_support(const toml::table& table, int index, const std::filesystem::path& file) {
   SupportSpec spec;
   spec.line = static_cast<int>(table.source().begin.line);
@@ -296,7 +301,7 @@ SupportSpec read_support(const toml::table& table, int index, const std::filesys
       keys.fail("axis", "the sliding direction has zero length");
     s.axis = axis.normalized();
   }
-  s.name = keys.text("name", s.flap + "_" + s.end);
+  s.name = keys.text("name", default_support_name(s.flap, s.end));
   keys.finish();
   return spec;
 }
@@ -321,11 +326,10 @@ void apply_override(toml::table& root, const std::string& assignment) {
       toml::table* found = nullptr;
       for (auto& element : *node->as_array()) {
         auto* t = element.as_table();
-        // A support without a name is called <flap>_<end> (read_support).
         auto name = t ? (*t)["name"].value<std::string>() : std::nullopt;
-        if (t && !name && parts[i] == "support" && (*t)["flap"].value<std::string>() &&
-            (*t)["end"].value<std::string>())
-          name = *(*t)["flap"].value<std::string>() + "_" + *(*t)["end"].value<std::string>();
+        const auto flap = t ? (*t)["flap"].value<std::string>() : std::nullopt;
+        const auto end = t ? (*t)["end"].value<std::string>() : std::nullopt;
+        if (!name && parts[i] == "support" && flap && end) name = default_support_name(*flap, *end);
         if (name == parts[i + 1]) {
           found = t;
         }

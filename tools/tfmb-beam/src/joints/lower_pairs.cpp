@@ -111,8 +111,7 @@ class LowerPair final : public Joint {
         break;
       default:
         phi = {ea.col(0).dot(d), ea.col(1).dot(d), ea.col(2).dot(eb.col(0)), ea.col(2).dot(eb.col(1))};
-        if (spec_.kind == JointKind::prismatic || spec_.kind == JointKind::pin_in_slot)
-          phi.push_back(ea.col(1).dot(eb.col(0)));
+        if (spec_.kind == JointKind::prismatic) phi.push_back(ea.col(1).dot(eb.col(0)));
         if (spec_.kind == JointKind::screw) {
           phi.push_back(ea.col(1).dot(eb.col(0)) * cos(phi_var) - ea.col(0).dot(eb.col(0)) * sin(phi_var));
           phi.push_back(ea.col(2).dot(d) - spec_.screw_lead * phi_var);
