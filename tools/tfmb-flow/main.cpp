@@ -103,6 +103,13 @@ int main(int argc, char** argv) {
                  "--limiter-stall-iterations)")
       ->check(CLI::IsMember({"false", "true", "auto"}))
       ->capture_default_str();
+  app.add_option("--restart-limiter", o.restart_limiter,
+                 "second order from --restart: live: the limiter evaluated every iteration; "
+                 "frozen: held at the restart state's values from the first iteration (with "
+                 "--matrix-free auto: Newton-Krylov from there), for a converged second-order "
+                 "state restarted after a small change such as a wall deformation")
+      ->check(CLI::IsMember({"live", "frozen"}))
+      ->capture_default_str();
   app.add_option("--turbulence-coupling", o.turbulence_coupling,
                  "SA: segregated (one implicit nu_tilde step after each mean-flow step, eddy "
                  "viscosity lagged), coupled (mean flow and nu_tilde in one Newton step, 5x5 "

@@ -509,6 +509,7 @@ void FlowSolver::set_primitive(const std::vector<State>& w) {
     u_[new_of_old_[i]] = gas_.conservative(w[i]);
   apply_strong_conditions(u_);
   limiter_frozen_ = false;
+  limiter_stale_ = true;
   set_freestream_nu_tilde();  // a restart overrides it with set_nu_tilde()
 }
 
@@ -590,6 +591,7 @@ void FlowSolver::evaluate_residual(bool update_limiter) {
     if (settings_.venkat_wang > 0.0)
       venkat_eps_ = make_wang_epsilon(w_, settings_.venkat_wang, n);
     venkatakrishnan_limiter(dual_, recon_stencil_.to_neighbour, w_, rgrad, venkat_eps_, phi_);
+    limiter_stale_ = false;
   }
   const bool limit = settings_.limiter;
 
@@ -1174,6 +1176,8 @@ SolveReport FlowSolver::solve() {
   std::vector<State> best_u;
   std::vector<double> best_nu;
   int best_iteration = 0;
+  if (hold_limiter_ && limiter_stale_)
+    compute_residual(true);  // the limiter of the state set since the last solve, to hold
   limiter_frozen_ = hold_limiter_;
   hold_limiter_ = false;
   std::vector<double> target_total_pressure(bcs_.size());

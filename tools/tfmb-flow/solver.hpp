@@ -232,9 +232,11 @@ class FlowSolver {
   // minus `below` [K], node by node: the probe run of the heat transfer coefficient
   // h = (q_probe - q_adiabatic) / below (see run.cpp).
   void make_walls_isothermal(double below);
-  // The next solve() starts with the limiter frozen at its last values (those of the state the
-  // previous solve ended in), instead of evaluating it afresh: for a small change of a converged
-  // state, such as the probe's wall temperature, a linearisation about that state.
+  // The next solve() starts with the limiter frozen at the current state's values (those of the
+  // state the previous solve ended in, or, after set_primitive(), evaluated once on the new
+  // state), instead of letting it move: for a small change of a converged state, such as the
+  // probe's wall temperature or a restart on a slightly deformed mesh, a linearisation about
+  // that state. With --matrix-free auto the run then starts with Newton-Krylov steps.
   void hold_limiter() { hold_limiter_ = true; }
   void set_residual_reference(double reference) { settings_.residual_reference = reference; }
   void set_residual_drop(double drop) { settings_.residual_drop = drop; }
@@ -353,6 +355,7 @@ class FlowSolver {
   GmresWorkspace gmres_workspace_;
   bool limiter_frozen_ = false;
   bool hold_limiter_ = false;  // see hold_limiter()
+  bool limiter_stale_ = true;  // phi_ not yet evaluated on the current state (set_primitive)
   long residual_evaluations_ = 0;  // since construction (see SolveReport)
   double residual_seconds_ = 0.0;
   // dual time stepping: dt, the backward-difference coefficients a0 U - a1 U^n + a2 U^(n-1),
