@@ -144,8 +144,9 @@ TEST(FlowRun, RestartOnDeformedMeshOfSameTopology) {
   const RunResult held = run(again, log);
   EXPECT_TRUE(held.report.converged);
   EXPECT_EQ(held.report.newton_from, 1);
-  std::printf("restart on the deformed mesh: limiter held %d iterations, live %d (from scratch %d)\n",
-              held.report.iterations, second.report.iterations, first.report.iterations);
+  std::printf(
+      "restart on the deformed mesh: limiter held %d iterations, live %d (from scratch %d)\n",
+      held.report.iterations, second.report.iterations, first.report.iterations);
   EXPECT_LT(held.report.iterations, second.report.iterations);
   EXPECT_NEAR(held.mass_flow / second.mass_flow, 1.0, 1e-4);
   std::filesystem::remove_all(dir);

@@ -48,7 +48,7 @@ struct RunOptions {
   // solution then depends a little on where the limiter froze, as any frozen-limiter solution
   // does, so a restart from a first-order state keeps it live (NPARC 61 x 16 from a first-order
   // state: mass flow 0.07 % off the second-order one with it frozen there).
-  std::string restart_limiter = "live";  // live | frozen
+  std::string restart_limiter = "live";            // live | frozen
   std::string turbulence_coupling = "segregated";  // segregated | coupled | auto (SA)
   std::string matrix_free = "auto";                // false | true | auto (second order)
   std::string turbulence_jacobian = "exact";       // exact | m-matrix (SA's own linearisation)
