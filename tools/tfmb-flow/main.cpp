@@ -142,6 +142,12 @@ int main(int argc, char** argv) {
                  "new minimum for this many iterations (0: never; a chattering limiter)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  app.add_option("--held-limiter-max-drop", o.settings.held_limiter_max_drop,
+                 "with --restart-limiter frozen: release the held limiter when the restart "
+                 "state's density residual is above this fraction of the run's reference (a "
+                 "large change since the restart file)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   app.add_option("--ilu-fill", o.settings.ilu_fill_level,
                  "level of fill of the block ILU preconditioner (0: ILU(0), the pattern of the "
                  "first-order Jacobian; k: also the fill-in of level <= k)")

@@ -1240,6 +1240,15 @@ SolveReport FlowSolver::solve() {
         break;
       continue;
     }
+    if (it == 1 && limiter_frozen_ && r_max > 0.0 &&
+        rnorm[0] > settings_.held_limiter_max_drop * r_max) {
+      limiter_frozen_ = false;  // a held limiter far from its state (held_limiter_max_drop)
+      if (settings_.print_every > 0)
+        std::fprintf(stderr,
+                     "iter %5d  limiter released: residual drop %.2e at the start is above "
+                     "%.2e, too far from the state it was held at\n",
+                     it, rnorm[0] / r_max, settings_.held_limiter_max_drop);
+    }
     if (rnorm[0] > r_max)
       last_progress = it;  // still in the start-up transient
     r_max = std::max(r_max, rnorm[0]);
