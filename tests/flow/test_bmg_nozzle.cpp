@@ -263,6 +263,8 @@ ViscousRun run_viscous(int ni, int nj, double dy1, int order, int max_iterations
     s.sa_exact_jacobian = std::atoi(c) != 0;
   if (const char* c = std::getenv("BMG_ILU_FILL"))
     s.ilu_fill_level = std::atoi(c);
+  if (const char* c = std::getenv("BMG_CFL_MAX"))  // --cfl-max
+    s.cfl_max = std::atof(c);
   // BMG_MATRIX_FREE=2: --matrix-free auto; BMG_FIRST_DROP: end the first-order stage at this
   // drop at the CFL ceiling, as tfmb-flow's first-order start does (--first-order-start-drop)
   if (std::getenv("BMG_MATRIX_FREE") && std::atoi(std::getenv("BMG_MATRIX_FREE")) == 2)
@@ -275,6 +277,14 @@ ViscousRun run_viscous(int ni, int nj, double dy1, int order, int max_iterations
   // first order from a uniform low-speed state; second order restarted from the converged
   // first-order solution (the way tfmb-flow --restart runs it)
   s.order = 1;
+  const double cfl_max = s.cfl_max;
+  const TurbulenceCoupling coupling = s.turbulence_coupling;
+  if (std::getenv("BMG_FIRST_DROP")) {
+    // as tfmb-flow's first-order start: the default ceiling, segregated SA for `auto`
+    s.cfl_max = std::min(s.cfl_max, SolverSettings{}.cfl_max);
+    if (s.turbulence_coupling == TurbulenceCoupling::automatic)
+      s.turbulence_coupling = TurbulenceCoupling::segregated;
+  }
   FlowSolver first(mesh, Geometry::axisymmetric, gas, {axis, out, wall, in}, s);
   const double t = t0 / 1.008, p = p0 * std::pow(t / t0, 3.5);
   first.set_uniform({p / (gas.R * t), 0.2 * std::sqrt(1.4 * gas.R * t), 0.0, p});
@@ -282,6 +292,8 @@ ViscousRun run_viscous(int ni, int nj, double dy1, int order, int max_iterations
   run.nodes = mesh.num_points();
   run.first_order = first.solve();
   s.order = order;
+  s.cfl_max = cfl_max;
+  s.turbulence_coupling = coupling;
   s.residual_drop = final_drop;
   s.residual_drop_at_cfl_ceiling = false;
   if (std::getenv("BMG_FIRST_DROP"))

@@ -1,0 +1,12 @@
+# tmr-flatplate: Spalart-Allmaras verification (README.md). Second order (a first-order start,
+# then tfmb-flow's default --matrix-free auto), 8 orders of the density residual.
+# --turbulence-coupling auto and --cfl-max 1e7: nu_tilde in the Newton system with the mean flow
+# once the residual has fallen 2 orders, and a CFL ceiling high enough for the wall layers. Their
+# cells have aspect ratios up to 3e4, and the local time step is set by the short side, so at
+# the default ceiling of 1e4 the streamwise CFL number is below 1 there and the run converged
+# linearly (0.96-0.98 per iteration on the 273 x 193 level, not converged in 2000 iterations).
+# The segregated SA step needs the V/dt term (a higher ceiling blew it up on nasa-2dcd), the
+# coupled one does not. Measured: tools/tfmb-flow/README.md, "Benchmark".
+ANALYSIS = flow
+FLOW_MODEL = sa
+FLOW_OPTS = --threads 2 --turbulence-coupling auto --cfl-max 1e7
