@@ -227,7 +227,7 @@ RunResult run(const RunOptions& o, const Logger& log) {
     // falls back to the live limiter (FlowSolver::solve).
     if (settings.order >= 2 && settings.limiter && o.time.time_step <= 0.0 &&
         o.restart_limiter == "frozen") {
-      solver.hold_limiter();
+      solver.hold_limiter(true);
       log.info("restart: limiter held at the restart state's values");
     }
   } else if (has_farfield || !has_inflow) {

@@ -1179,7 +1179,8 @@ SolveReport FlowSolver::solve() {
   if (hold_limiter_ && limiter_stale_)
     compute_residual(true);  // the limiter of the state set since the last solve, to hold
   limiter_frozen_ = hold_limiter_;
-  hold_limiter_ = false;
+  const bool release_if_far = hold_limiter_ && release_held_limiter_;
+  hold_limiter_ = release_held_limiter_ = false;
   std::vector<double> target_total_pressure(bcs_.size());
   for (std::size_t b = 0; b < bcs_.size(); ++b)
     target_total_pressure[b] = bcs_[b].total_pressure;
@@ -1240,7 +1241,7 @@ SolveReport FlowSolver::solve() {
         break;
       continue;
     }
-    if (it == 1 && limiter_frozen_ && r_max > 0.0 &&
+    if (it == 1 && release_if_far && limiter_frozen_ && r_max > 0.0 &&
         rnorm[0] > settings_.held_limiter_max_drop * r_max) {
       limiter_frozen_ = false;  // a held limiter far from its state (held_limiter_max_drop)
       if (settings_.print_every > 0)

@@ -57,7 +57,7 @@ struct SolverSettings {
   // stalling convergence near shocks (the frozen limiter is a fixed, valid scheme).
   double limiter_freeze_drop = 0.0;
   int limiter_stall_iterations = 25;
-  // A limiter held from the start (hold_limiter()) is released at the first iteration when the
+  // A restart's limiter held from the start (hold_limiter(true)) is released at the first iteration when the
   // state's density residual is more than this fraction of the run's reference: the state is
   // then far from the one the limiter belongs to, and Newton steps through it fail. Measured on
   // configuration 2's coupling iterates (56k nodes): the held limiter converged restarts that
@@ -244,7 +244,13 @@ class FlowSolver {
   // state), instead of letting it move: for a small change of a converged state, such as the
   // probe's wall temperature or a restart on a slightly deformed mesh, a linearisation about
   // that state. With --matrix-free auto the run then starts with Newton-Krylov steps.
-  void hold_limiter() { hold_limiter_ = true; }
+  // release_if_far: a restart's hold, let go at the first iteration if the state is far from
+  // converged (held_limiter_max_drop); the probe's hold is kept whatever its first residual (the
+  // wall temperature step raises it, and a limiter let go there gave negative h).
+  void hold_limiter(bool release_if_far = false) {
+    hold_limiter_ = true;
+    release_held_limiter_ = release_if_far;
+  }
   void set_residual_reference(double reference) { settings_.residual_reference = reference; }
   void set_residual_drop(double drop) { settings_.residual_drop = drop; }
   // Dual time stepping (Jameson 1991, AIAA 91-1596): from this call on, the residual holds the
@@ -362,6 +368,7 @@ class FlowSolver {
   GmresWorkspace gmres_workspace_;
   bool limiter_frozen_ = false;
   bool hold_limiter_ = false;  // see hold_limiter()
+  bool release_held_limiter_ = false;
   bool limiter_stale_ = true;  // phi_ not yet evaluated on the current state (set_primitive)
   long residual_evaluations_ = 0;  // since construction (see SolveReport)
   double residual_seconds_ = 0.0;
