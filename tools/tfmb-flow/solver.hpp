@@ -57,9 +57,9 @@ struct SolverSettings {
   // stalling convergence near shocks (the frozen limiter is a fixed, valid scheme).
   double limiter_freeze_drop = 0.0;
   int limiter_stall_iterations = 25;
-  // A restart's limiter held from the start (hold_limiter(true)) is released at the first iteration when the
-  // state's density residual is more than this fraction of the run's reference: the state is
-  // then far from the one the limiter belongs to, and Newton steps through it fail. Measured on
+  // A restart's limiter held from the start (hold_limiter(true)) is released at the first iteration
+  // when the state's density residual is more than this fraction of the run's reference: the state
+  // is then far from the one the limiter belongs to, and Newton steps through it fail. Measured on
   // configuration 2's coupling iterates (56k nodes): the held limiter converged restarts that
   // started at drops 2.5e-3 to 1.5e-2 (in 32-60 iterations instead of 83-2000) and failed after
   // 19-22 iterations at 0.15-0.63 (the first iterates after the largest wall motion).
