@@ -269,33 +269,18 @@ ViscousRun run_viscous(int ni, int nj, double dy1, int order, int max_iterations
   // drop at the CFL ceiling, as tfmb-flow's first-order start does (--first-order-start-drop)
   if (std::getenv("BMG_MATRIX_FREE") && std::atoi(std::getenv("BMG_MATRIX_FREE")) == 2)
     s.matrix_free = MatrixFree::after_limiter_freeze;
-  const double final_drop = s.residual_drop;
-  if (const char* c = std::getenv("BMG_FIRST_DROP"); c && order >= 2) {
-    s.residual_drop = std::atof(c);
-    s.residual_drop_at_cfl_ceiling = true;
-  }
   // first order from a uniform low-speed state; second order restarted from the converged
   // first-order solution (the way tfmb-flow --restart runs it)
-  s.order = 1;
-  const double cfl_max = s.cfl_max;
-  const TurbulenceCoupling coupling = s.turbulence_coupling;
-  if (std::getenv("BMG_FIRST_DROP")) {
-    // as tfmb-flow's first-order start: the default ceiling, segregated SA for `auto`
-    s.cfl_max = std::min(s.cfl_max, SolverSettings{}.cfl_max);
-    if (s.turbulence_coupling == TurbulenceCoupling::automatic)
-      s.turbulence_coupling = TurbulenceCoupling::segregated;
-  }
-  FlowSolver first(mesh, Geometry::axisymmetric, gas, {axis, out, wall, in}, s);
+  SolverSettings first_settings = s;
+  first_settings.order = 1;
+  if (const char* c = std::getenv("BMG_FIRST_DROP"); c && order >= 2)
+    first_settings = first_order_start_settings(s, std::atof(c));
+  FlowSolver first(mesh, Geometry::axisymmetric, gas, {axis, out, wall, in}, first_settings);
   const double t = t0 / 1.008, p = p0 * std::pow(t / t0, 3.5);
   first.set_uniform({p / (gas.R * t), 0.2 * std::sqrt(1.4 * gas.R * t), 0.0, p});
   ViscousRun run;
   run.nodes = mesh.num_points();
   run.first_order = first.solve();
-  s.order = order;
-  s.cfl_max = cfl_max;
-  s.turbulence_coupling = coupling;
-  s.residual_drop = final_drop;
-  s.residual_drop_at_cfl_ceiling = false;
   if (std::getenv("BMG_FIRST_DROP"))
     s.residual_reference = run.first_order.residual_reference;  // as tfmb-flow's second stage
   FlowSolver solver(mesh, Geometry::axisymmetric, gas, {axis, out, wall, in}, s);

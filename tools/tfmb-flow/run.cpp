@@ -287,20 +287,8 @@ RunResult run(const RunOptions& o, const Logger& log) {
     if (turbulent)
       solver.set_nu_tilde(ta.mean_nu_tilde);
   } else if (o.first_order_start && settings.order >= 2 && !o.restart_file) {
-    SolverSettings first_settings = settings;
-    first_settings.order = 1;
-    first_settings.residual_drop = std::max(settings.residual_drop, o.first_order_start_drop);
-    first_settings.residual_drop_at_cfl_ceiling = true;
-    // The first-order stage only has to get past the start-up transient: at most the default
-    // CFL ceiling there, whatever --cfl-max says. Its end counts at the ceiling, and a ceiling
-    // of 1e7 (cases/tmr-flatplate) made it converge outright (Back-Massier-Gier 321 x 81: 83
-    // first-order iterations, drop 1e-10; nasa-2dcd NPR 8.91: 108, 1.7e-7) before second order.
-    first_settings.cfl_max = std::min(settings.cfl_max, SolverSettings{}.cfl_max);
-    // and segregated SA steps: coupled ones gain nothing in a transient whose end is all it needs
-    // (Back-Massier-Gier 321 x 81, --turbulence-coupling auto: 67 first-order iterations coupled
-    // from a drop of 1e-2 on, 20 segregated; the same second-order stage after either)
-    if (settings.turbulence_coupling == TurbulenceCoupling::automatic)
-      first_settings.turbulence_coupling = TurbulenceCoupling::segregated;
+    const SolverSettings first_settings =
+        first_order_start_settings(settings, o.first_order_start_drop);
     SolveReport first;
     {
       FlowSolver first_solver(lm.mesh, lm.geometry, gas, bcs, first_settings);

@@ -498,6 +498,17 @@ double FlowSolver::turbulence_step(double cfl) {
   return rms;
 }
 
+SolverSettings first_order_start_settings(const SolverSettings& second, double drop) {
+  SolverSettings first = second;
+  first.order = 1;
+  first.residual_drop = std::max(second.residual_drop, drop);
+  first.residual_drop_at_cfl_ceiling = true;
+  first.cfl_max = std::min(second.cfl_max, SolverSettings{}.cfl_max);
+  if (second.turbulence_coupling == TurbulenceCoupling::automatic)
+    first.turbulence_coupling = TurbulenceCoupling::segregated;
+  return first;
+}
+
 void FlowSolver::set_uniform(const State& w) {
   set_primitive(std::vector<State>(dual_.num_nodes, w));
 }

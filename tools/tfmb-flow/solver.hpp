@@ -163,6 +163,16 @@ struct IterationRecord {
   double wall_time = 0.0;            // since the start of solve() [s]
 };
 
+// The settings of the first-order start ahead of a second-order run with `second`
+// (tfmb-flow --first-order-start): first order, ended once the density residual has fallen by
+// `drop` (or by second.residual_drop, if smaller) at the CFL ceiling. The stage only has to get
+// past the start-up transient, so it keeps at most the default ceiling and, for `auto`
+// turbulence coupling, segregated SA steps: with a ceiling of 1e7 its end-at-the-ceiling rule let
+// it converge outright (Back-Massier-Gier 321 x 81: 83 first-order iterations, drop 1e-10;
+// nasa-2dcd NPR 8.91: 108, 1.7e-7), and coupled first-order steps took 67 iterations on BMG
+// where segregated ones took 20, with the same second-order stage after either.
+SolverSettings first_order_start_settings(const SolverSettings& second, double drop);
+
 struct SolveReport {
   bool converged = false;
   bool converged_by_stationarity = false;  // (rather than by the residual drop)
