@@ -1,5 +1,6 @@
 // Layout of the "model" file kind; prose spec in formats/model.md. Written by tfmb-input
-// (tools/tfmb-input/model_io.cpp), read by tfmb-mesh, tfmb-beam, tfmb-loads, tfmb-heat.
+// and read only through formats/src/model.cpp (tfmb-input writes it; tfmb-mesh, tfmb-beam,
+// tfmb-loads, tfmb-matmap and tfmb-heat read it).
 // 2.0: beam discretisation, full-resolution reference lines, joint parameters, domain
 // boundaries with kinds and order, solid outlines, thermal, mesh and analysis settings.
 // 2.1: flexible joints: measure_functions (+ lambda_terms, mu_terms) replace 2.0's constant
@@ -7,6 +8,8 @@
 // 2.2: optional /mesh_controls@cells_per_circle (curvature-based wall spacing).
 // 2.3: optional /mesh_controls@end_cells (cells across a flap's end face).
 // 2.4: support kinds sliding_clamp and sliding_pinned with /supports/*/axis.
+// 2.5: optional /conditions@viscous_length (nu/u_tau of the y+ estimate; tfmb-mesh reports the
+// first layer's y+ from it instead of compiling tfmb-input's estimate).
 #include "schema_rules.hpp"
 
 namespace tfmb::formats::detail {
@@ -23,7 +26,7 @@ Schema model_schema() {
   Schema s{"model",
            "tfmb/model",
            2,
-           4,
+           5,
            "the analysis model: flaps as beams, sections, joints, supports, walls, flow domain, "
            "conditions, thermal, mesh and analysis settings",
            false,
@@ -148,6 +151,10 @@ Schema model_schema() {
                                "length for the Reynolds number of the y+ estimate (0: 0.1 m)", 0.0));
   s.attributes.push_back(nattr("/conditions", "yplus_target", "1", "y+ the first cell was sized for (0: height given)", 0.0));
   s.attributes.push_back(nattr("/conditions", "first_cell_height", "m", "first cell height at walls", 0.0));
+  s.attributes.push_back(nattr("/conditions", "viscous_length", "m",
+                               "nu/u_tau of the flat-plate skin-friction estimate: a cell height h has "
+                               "y+ = h / viscous_length (0: not recorded)",
+                               0.0, std::nullopt, false));
   // Thermal settings.
   s.attributes.push_back(sattr("/thermal", "flow_wall", "thermal wall condition of the flow solver",
                                {"adiabatic", "isothermal"}));

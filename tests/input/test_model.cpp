@@ -6,10 +6,11 @@
 
 #include "tfmb-input/case_file.hpp"
 #include "tfmb-input/model_build.hpp"
-#include "tfmb-input/polyline.hpp"
+#include "tfmb/common/polyline.hpp"
 #include "run_tool.hpp"
 
 using namespace tfmb::input;
+using tfmb::geometry::distance_to;
 
 TEST(Section, RectangleMatchesClosedForm) {
   const double t = 0.003, b = 1.0, e = 113.76e9, nu = 0.31, rho = 4430.0;

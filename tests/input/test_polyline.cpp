@@ -4,9 +4,9 @@
 
 #include <cmath>
 
-#include "tfmb-input/polyline.hpp"
+#include "tfmb/common/polyline.hpp"
 
-using namespace tfmb::input;
+using namespace tfmb::geometry;
 
 TEST(Polyline, MitredOffsetKeepsTheDistanceToBothSegments) {
   const Polyline corner{{0, 0}, {1, 0}, {1, 1}};  // a left turn of 90 degrees

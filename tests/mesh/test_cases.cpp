@@ -67,7 +67,7 @@ TEST_P(Case, ModelAndMeshesPassCheckAndOpenInMeshio) {
   auto r = run_tool("tfmb-input " + case_file.string() + " -o " + model.string(), dir);
   ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
   EXPECT_EQ(run_tool("tfmb-check --no-summary " + model.string(), dir).exit_code, 0);
-  const auto parsed = tfmb::input::read_model(model);
+  const auto parsed = tfmb::formats::read_model(model);
   std::vector<std::string> sidecars;
   if (parsed.domain.settings.kind != "none") {
     r = run_tool("tfmb-mesh flow " + model.string() + " -o " + (dir / "flowmesh.h5").string() + " --scale 4", dir);

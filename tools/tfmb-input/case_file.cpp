@@ -550,14 +550,11 @@ double friction_velocity(const FlowConditions& f, const ReferenceState& s) {
 }
 }  // namespace
 
-double first_cell_height_for_yplus(const FlowConditions& flow, double yplus) {
+double viscous_length(const FlowConditions& flow) {
   const ReferenceState s = reference_state(flow);
-  return yplus * s.viscosity / (s.density * friction_velocity(flow, s));
-}
-
-double estimated_yplus(const FlowConditions& flow, double first_cell_height) {
-  const ReferenceState s = reference_state(flow);
-  return first_cell_height * s.density * friction_velocity(flow, s) / s.viscosity;
+  const double length = s.viscosity / (s.density * friction_velocity(flow, s));
+  // Conditions without a flow (a structure-only case, T0 = 0) give no estimate, not a NaN.
+  return std::isfinite(length) && length > 0.0 ? length : 0.0;
 }
 
 }  // namespace tfmb::input

@@ -50,9 +50,9 @@ struct CaseSpec {
 // tables is addressed by its name, e.g. "flap.upper_div.thickness=0.004").
 CaseSpec read_case(const std::filesystem::path& file, const std::vector<std::string>& overrides);
 
-// First-cell height [m] for a y+ target from a flat-plate skin-friction estimate at the nozzle
-// throat (or free stream) conditions; also used to estimate y+ of a given height.
-double first_cell_height_for_yplus(const FlowConditions& flow, double yplus);
-double estimated_yplus(const FlowConditions& flow, double first_cell_height);
+// Viscous length nu/u_tau [m] from a flat-plate skin-friction estimate at the nozzle throat (or
+// free stream) conditions: a first cell of height h has y+ = h / viscous_length. 0 where the
+// conditions give no estimate (no flow, T0 = 0).
+double viscous_length(const FlowConditions& flow);
 
 }  // namespace tfmb::input

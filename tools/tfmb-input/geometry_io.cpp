@@ -10,20 +10,9 @@
 #include <sstream>
 
 #include "tfmb/common/errors.hpp"
+#include "tfmb/common/gmsh_session.hpp"
 
 namespace tfmb::input {
-
-GmshSession::GmshSession() {
-  gmsh::initialize(0, nullptr, false);
-  gmsh::option::setNumber("General.Terminal", 0);
-  gmsh::option::setNumber("General.Verbosity", 0);
-}
-GmshSession::~GmshSession() {
-  try {
-    gmsh::finalize();
-  } catch (...) {
-  }
-}
 
 namespace {
 

@@ -15,15 +15,6 @@ struct Curve {
   geometry::Polyline points;     // [m]
 };
 
-// RAII for gmsh's process-wide state: initialise quietly, finalise on scope exit.
-class GmshSession {
- public:
-  GmshSession();
-  ~GmshSession();
-  GmshSession(const GmshSession&) = delete;
-  GmshSession& operator=(const GmshSession&) = delete;
-};
-
 // Reads the curves of a geometry file; coordinates are multiplied by `scale`. CAD curves are
 // sampled with `curve_samples` points uniformly in their parameter (straight lines: 2).
 // Throws BadInput for a missing or unreadable file, or a file without curves.

@@ -5,10 +5,13 @@
 #include <map>
 #include <sstream>
 
-#include "polyline.hpp"
+#include "tfmb/common/cli.hpp"
 #include "tfmb/common/errors.hpp"
+#include "tfmb/common/polyline.hpp"
 
 namespace tfmb::input {
+
+using namespace geometry;  // polyline helpers (libcommon)
 namespace {
 
 std::string num(double v) {
@@ -550,17 +553,15 @@ Model build_model(const CaseSpec& spec, const std::vector<Curve>& curves, const 
   }
   check_overlaps(model, tol);
   model.domain = build_domain(model, curves);
+  model.flow.viscous_length = viscous_length(model.flow);
   if (model.flow.yplus_target > 0.0) {
-    model.flow.first_cell_height = first_cell_height_for_yplus(model.flow, model.flow.yplus_target);
+    if (model.flow.viscous_length <= 0.0)
+      throw BadInput(spec.file.string() + ": flow.yplus_target: the flow conditions give no y+ estimate "
+                     "(stagnation temperature, pressures and gamma must describe a flow); give "
+                     "flow.first_cell_height instead");
+    model.flow.first_cell_height = model.flow.yplus_target * model.flow.viscous_length;
   }
   return model;
-}
-
-const Flap* Model::find_flap(const std::string& name) const {
-  for (const Flap& f : flaps) {
-    if (f.name == name) return &f;
-  }
-  return nullptr;
 }
 
 void run(const Options& options, const Logger& log) {
@@ -580,7 +581,7 @@ void run(const Options& options, const Logger& log) {
   provenance.settings = spec.resolved_toml;
   provenance.inputs = {options.case_file};
   if (!spec.geometry.file.empty()) provenance.inputs.push_back(spec.geometry.file);
-  write_model(model, options.output, provenance);
+  write_model(model, options.output, "tfmb-input " + cli::version(), provenance);
   log.summary("wrote " + options.output.string() + ": " + std::to_string(model.flaps.size()) + " flaps, " +
               std::to_string(model.joints.size()) + " joints, " + std::to_string(model.supports.size()) +
               " supports, " + std::to_string(model.domain.boundaries.size()) + " domain boundaries, first cell " +

@@ -11,7 +11,7 @@
 #include <sstream>
 
 #include "mesh_tools.hpp"
-#include "tfmb-input/polyline.hpp"
+#include "tfmb/common/polyline.hpp"
 #include "tfmb/common/errors.hpp"
 #include "tfmb/formats/schema.hpp"
 
@@ -171,7 +171,7 @@ Mesh deform_mesh(const Mesh& mesh, const std::vector<WallDisplacement>& walls, D
           // the wall's length they take the nearest curve point's displacement.
           const double loose = 0.05 * std::max(boundary_length, 1e-3 * extent);
           if (best > loose) {
-            throw BadInput("walldisp: node " + std::to_string(node) + " at " + input::format_point(p) + " of wall '" +
+            throw BadInput("walldisp: node " + std::to_string(node) + " at " + geometry::format_point(p) + " of wall '" +
                            name + "' is " + num(best) + " m from the walldisp curves of " +
                            (same_name.empty() ? "flap '" + b.flap + "'" : "'" + name + "'") +
                            ": the displacement was computed for another mesh or geometry");
@@ -258,7 +258,7 @@ Mesh deform_mesh(const Mesh& mesh, const std::vector<WallDisplacement>& walls, D
     const auto nodes = nodes_of(c);
     for (auto node : nodes) where += x[static_cast<std::size_t>(node)] / static_cast<double>(nodes.size());
     throw BadInput("deform: the displacement would invert " + std::to_string(q.invalid_cells) + " cells (first: cell " +
-                   std::to_string(c) + " near " + input::format_point(where) + "); the largest admissible fraction "
+                   std::to_string(c) + " near " + geometry::format_point(where) + "); the largest admissible fraction "
                    "of this displacement is " + num(lo) + " (apply it in smaller steps or remesh)");
   }
   report.admissible_fraction = 1.0;

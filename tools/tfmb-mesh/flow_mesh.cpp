@@ -9,16 +9,14 @@
 #include <map>
 #include <sstream>
 
-#include "tfmb-input/case_file.hpp"
-#include "tfmb-input/geometry_io.hpp"
 #include "mesh_tools.hpp"
-#include "tfmb-input/polyline.hpp"
 #include "tfmb/common/errors.hpp"
+#include "tfmb/common/gmsh_session.hpp"
+#include "tfmb/common/polyline.hpp"
 
 namespace tfmb::mesh {
 
-using input::Point;
-using input::Polyline;
+using namespace geometry;  // polyline helpers (libcommon)
 
 Mesh build_structured_mesh(const Model& model, double scale, FlowMeshReport& report);
 
@@ -58,7 +56,7 @@ std::vector<Part> split_at_corners(const std::vector<const Polyline*>& lines, co
       part.line.assign(line.begin() + static_cast<std::ptrdiff_t>(corners[k]),
                        line.begin() + static_cast<std::ptrdiff_t>(corners[k + 1]) + 1);
       part.min_segments = count == 1 ? min_segments[p] : 1;
-      part.size = std::min(wall_size, input::length(part.line) / part.min_segments);
+      part.size = std::min(wall_size, length(part.line) / part.min_segments);
       parts.push_back(std::move(part));
     }
   }
@@ -74,7 +72,7 @@ std::vector<Part> split_at_corners(const std::vector<const Polyline*>& lines, co
 std::vector<std::array<double, 3>> curvature_spacing(const Polyline& line, int cells_per_circle, double scale) {
   std::vector<std::array<double, 3>> out;
   if (cells_per_circle <= 0 || line.size() < 3) return out;
-  const double total = input::length(line);
+  const double total = length(line);
   double s = 0.0;
   for (std::size_t i = 1; i + 1 < line.size(); ++i) {
     const Point back = line[i] - line[i - 1], ahead = line[i + 1] - line[i];
@@ -94,7 +92,7 @@ std::vector<std::array<double, 3>> curvature_spacing(const Polyline& line, int c
 // either end and from the curvature-limited spacings c_j (d_j: distance to the stretch where c_j
 // holds).
 Polyline sample_part(const Part& part, double a, double b, double g, int cells_per_circle, double scale) {
-  const double total = input::length(part.line);
+  const double total = length(part.line);
   const int samples = 2000;
   std::vector<double> cumulative(samples + 1, 0.0);
   const auto curved = curvature_spacing(part.line, cells_per_circle, scale);
@@ -118,7 +116,7 @@ Polyline sample_part(const Part& part, double a, double b, double g, int cells_p
     s.push_back(total * (static_cast<double>(i - 1) + f) / samples);
   }
   s.push_back(total);
-  Polyline out = input::points_at(part.line, s);
+  Polyline out = points_at(part.line, s);
   out.front() = part.line.front();
   out.back() = part.line.back();
   return out;
@@ -134,6 +132,11 @@ struct Run {
 
 }  // namespace
 
+std::optional<double> estimated_yplus(const Model& model, double height) {
+  if (!(model.flow.viscous_length > 0.0)) return std::nullopt;
+  return height / model.flow.viscous_length;
+}
+
 Mesh build_flow_mesh(const Model& model, const FlowMeshOptions& options, FlowMeshReport& report,
                      const Logger& log) {
   Stopwatch clock;
@@ -142,7 +145,7 @@ Mesh build_flow_mesh(const Model& model, const FlowMeshOptions& options, FlowMes
     throw BadInput("the model has no flow domain (domain.kind = 'none'): nothing to mesh");
   }
   const double scale = options.scale > 0.0 ? options.scale : model.mesh.scale;
-  report.estimated_yplus = 0.0;
+  report.estimated_yplus.reset();
   if (domain.settings.kind != "nozzle") {
     Mesh mesh = build_structured_mesh(model, scale, report);
     report.quality = mesh_quality(mesh);
@@ -203,7 +206,7 @@ Mesh build_flow_mesh(const Model& model, const FlowMeshOptions& options, FlowMes
       }
       run.nodes.insert(run.nodes.end(), run.nodes.empty() ? d.begin() : d.begin() + 1, d.end());
     }
-    run.normals = input::vertex_normals(run.nodes, 2.5);
+    run.normals = vertex_normals(run.nodes, 2.5);
     // At the run ends the layers follow the adjacent non-wall boundary (the left domain face).
     const auto& before = pieces[(run.pieces.front() + np - 1) % np].points;
     const auto& after = pieces[(run.pieces.back() + 1) % np].points;
@@ -228,11 +231,11 @@ Mesh build_flow_mesh(const Model& model, const FlowMeshOptions& options, FlowMes
   double clearance = 1e300;
   for (std::size_t a = 0; a < runs.size(); ++a) {
     for (std::size_t b = a + 1; b < runs.size(); ++b) {
-      for (const Point& p : runs[a].nodes) clearance = std::min(clearance, input::distance_to(runs[b].nodes, p));
+      for (const Point& p : runs[a].nodes) clearance = std::min(clearance, distance_to(runs[b].nodes, p));
     }
   }
   for (std::size_t i = 0; i < np; ++i) {
-    if (!is_wall(i)) clearance = std::min(clearance, 2.0 * input::length(pieces[i].points));
+    if (!is_wall(i)) clearance = std::min(clearance, 2.0 * length(pieces[i].points));
   }
   while (layers > 0 && thickness(layers) > 0.25 * clearance) --layers;
   // Where a wall is concave on the flow side the layer directions converge and meet about one
@@ -286,7 +289,7 @@ Mesh build_flow_mesh(const Model& model, const FlowMeshOptions& options, FlowMes
         const Point& d = points[static_cast<std::size_t>(id(i, k + 1))];
         const double area = 0.5 * ((c - a).x() * (d - b).y() - (c - a).y() * (d - b).x());
         if (area <= 0.0) {
-          throw BadInput("boundary layer folds at " + input::format_point(a) + " (layer " + std::to_string(k + 1) +
+          throw BadInput("boundary layer folds at " + format_point(a) + " (layer " + std::to_string(k + 1) +
                          " of " + std::to_string(layers) + "): reduce mesh.max_layers, mesh.growth or the "
                          "first layer height, or refine mesh.wall_size");
         }
@@ -296,7 +299,7 @@ Mesh build_flow_mesh(const Model& model, const FlowMeshOptions& options, FlowMes
   const auto top = [&](const Run& run, std::size_t node) { return run.ids[node * (layers + 1) + static_cast<std::size_t>(layers)]; };
 
   // gmsh: the loop made of strip tops and non-wall pieces; triangles inside.
-  input::GmshSession session;
+  GmshSession session;
   gmsh::model::add("flow");
   gmsh::option::setNumber("Mesh.Algorithm", options.algorithm);
   gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 1);
@@ -527,7 +530,7 @@ Mesh build_flow_mesh(const Model& model, const FlowMeshOptions& options, FlowMes
   mesh.regions["fluid"] = all;
   report.quality = mesh_quality(mesh);
   if (report.first_layer_height > 0.0) {
-    report.estimated_yplus = input::estimated_yplus(model.flow, report.first_layer_height);
+    report.estimated_yplus = estimated_yplus(model, report.first_layer_height);
   }
   report.seconds = clock.seconds();
   log.verbose("flow mesh: " + std::to_string(runs.size()) + " wall runs, " + std::to_string(layers) +

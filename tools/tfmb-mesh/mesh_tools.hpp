@@ -3,17 +3,25 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "tfmb-input/model.hpp"
+#include "tfmb/common/geometry.hpp"
 #include "tfmb/common/log.hpp"
 #include "tfmb/formats/files.hpp"
+#include "tfmb/formats/model.hpp"
 
 namespace tfmb::mesh {
 
 using formats::Mesh;
-using input::Model;
+using formats::Model;
+using geometry::Point;
+using geometry::Polyline;
+
+// y+ of a wall cell of height h from the model's viscous length (model 2.5: tfmb-input's
+// flat-plate estimate); empty if the model records none.
+std::optional<double> estimated_yplus(const Model& model, double height);
 
 // --- quality -------------------------------------------------------------------------------
 struct Quality {
@@ -38,7 +46,7 @@ struct FlowMeshReport {
   Quality quality;
   int boundary_layers = 0;
   double first_layer_height = 0.0;  // [m]
-  double estimated_yplus = 0.0;
+  std::optional<double> estimated_yplus;  // [1] empty: the model records no viscous length
   double seconds = 0.0;
 };
 // Builds the fluid mesh of a model's flow domain (nozzle: quad layers on walls + gmsh triangles;
@@ -59,7 +67,7 @@ struct WallDisplacement {
   std::string boundary;              // a flow-mesh boundary name, or <flap>_<side> of the model
   std::string flap;
   std::vector<std::int64_t> nodes;   // flow-mesh node of each point (empty: points of the model)
-  input::Polyline x0;                // [m]
+  Polyline x0;                       // [m]
   std::vector<Eigen::Vector2d> displacement;  // [m]
 };
 std::vector<WallDisplacement> read_walldisp(const std::filesystem::path& file);

@@ -43,7 +43,7 @@ formats::Provenance provenance(const Options& options, std::vector<std::filesyst
 int run(const Options& options, const Logger& log) {
   Stopwatch clock;
   if (options.command == "flow") {
-    const Model model = input::read_model(options.input);
+    const Model model = formats::read_model(options.input);
     FlowMeshOptions fo;
     fo.scale = options.scale;
     fo.algorithm = options.algorithm;
@@ -60,7 +60,7 @@ int run(const Options& options, const Logger& log) {
       formats::write_header(w, "flowmesh", header);
       formats::write_mesh(w, mesh);
       write_quality(w, report.quality);
-      w.set_attr("/mesh", "estimated_yplus", report.estimated_yplus);
+      if (report.estimated_yplus) w.set_attr("/mesh", "estimated_yplus", *report.estimated_yplus);
       w.set_attr("/mesh", "first_layer_height", report.first_layer_height);
       w.set_attr("/mesh", "boundary_layers", static_cast<std::int64_t>(report.boundary_layers));
       formats::write_provenance(w, provenance(options, {options.input}));
@@ -69,14 +69,14 @@ int run(const Options& options, const Logger& log) {
     formats::write_xdmf_sidecar(options.output);
     log.info("quality: " + quality_text(report.quality) + ", " + std::to_string(report.boundary_layers) +
              " wall layers, first layer " + num(report.first_layer_height) + " m, estimated y+ " +
-             num(report.estimated_yplus));
+             (report.estimated_yplus ? num(*report.estimated_yplus) : std::string("not recorded in the model")));
     log.summary("wrote " + options.output.string() + ": " + std::to_string(mesh.node_count()) + " nodes, " +
                 std::to_string(mesh.triangles.rows()) + " triangles, " + std::to_string(mesh.quads.rows()) +
                 " quads, " + std::to_string(mesh.boundaries.size()) + " boundaries (" + num(clock.seconds(), 3) + " s)");
     return 0;
   }
   if (options.command == "solid") {
-    const Model model = input::read_model(options.input);
+    const Model model = formats::read_model(options.input);
     SolidLink link;
     const Mesh mesh = build_solid_mesh(model, link);
     const Quality q = mesh_quality(mesh);

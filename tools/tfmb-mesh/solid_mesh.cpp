@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "mesh_tools.hpp"
-#include "tfmb-input/polyline.hpp"
+#include "tfmb/common/polyline.hpp"
 #include "tfmb/common/errors.hpp"
 
 namespace tfmb::mesh {
@@ -13,7 +13,7 @@ namespace {
 
 // The point at arc length s on `line` and the same segment parameter on `a` and `b`, which have
 // the same number of points (walls offset from the reference line vertex by vertex).
-void sample(const input::Polyline& line, const input::Polyline& a, const input::Polyline& b,
+void sample(const Polyline& line, const Polyline& a, const Polyline& b,
             const std::vector<double>& cumulative, double s, Eigen::Vector2d& on_a, Eigen::Vector2d& on_b) {
   std::size_t k = static_cast<std::size_t>(std::upper_bound(cumulative.begin(), cumulative.end(), s) - cumulative.begin());
   k = std::clamp<std::size_t>(k, 1, line.size() - 1) - 1;

@@ -4,9 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "tfmb-input/case_file.hpp"
 #include "mesh_tools.hpp"
-#include "tfmb-input/polyline.hpp"
+#include "tfmb/common/polyline.hpp"
 #include "tfmb/common/errors.hpp"
 
 namespace tfmb::mesh {
@@ -84,14 +83,14 @@ Mesh build_structured_mesh(const Model& model, double scale, FlowMeshReport& rep
   const auto& d = model.domain;
   const bool viscous = model.flow.turbulence != "inviscid";
   const double h1 = viscous ? model.flow.first_cell_height * scale : 0.0;
-  auto find = [&](const std::string& name) -> const input::DomainBoundary& {
+  auto find = [&](const std::string& name) -> const formats::DomainBoundary& {
     for (const auto& b : d.boundaries) {
       if (b.name == name) return b;
     }
     throw BadInput("model: domain boundary '" + name + "' missing for domain kind '" + d.settings.kind + "'");
   };
   if (d.settings.kind == "channel") {
-    input::Polyline wall = input::reversed(find("wall").points);  // x increasing
+    Polyline wall = geometry::reversed(find("wall").points);  // x increasing
     std::vector<double> wx, wy;
     for (const auto& p : wall) {
       wx.push_back(p.x());
@@ -123,7 +122,7 @@ Mesh build_structured_mesh(const Model& model, double scale, FlowMeshReport& rep
     mesh.boundaries["inflow"] = boundary("inflow", in);
     report.boundary_layers = 0;
     report.first_layer_height = h1 > 0 ? min_height * eta[1] : 0.0;
-    if (report.first_layer_height > 0) report.estimated_yplus = input::estimated_yplus(model.flow, report.first_layer_height);
+    if (report.first_layer_height > 0) report.estimated_yplus = estimated_yplus(model, report.first_layer_height);
     return mesh;
   }
   if (d.settings.kind == "flatplate") {
@@ -163,7 +162,7 @@ Mesh build_structured_mesh(const Model& model, double scale, FlowMeshReport& rep
     mesh.boundaries["inflow"] = boundary("inflow", in);
     report.boundary_layers = 0;
     report.first_layer_height = h * eta[1];
-    report.estimated_yplus = input::estimated_yplus(model.flow, report.first_layer_height);
+    report.estimated_yplus = estimated_yplus(model, report.first_layer_height);
     return mesh;
   }
   throw BadInput("domain kind '" + d.settings.kind + "' has no mesher");

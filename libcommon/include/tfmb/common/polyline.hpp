@@ -1,4 +1,5 @@
-// Polyline operations the input and mesh stages share: resampling, offsetting, intersections.
+// Polyline operations the input and mesh stages share: resampling, offsetting, intersections,
+// distances. No physics.
 #pragma once
 
 #include <optional>
@@ -6,10 +7,10 @@
 
 #include "tfmb/common/geometry.hpp"
 
-namespace tfmb::input {
+namespace tfmb::geometry {
 
-using geometry::Point;
-using geometry::Polyline;
+
+
 
 double length(const Polyline& line);
 Polyline reversed(Polyline line);
@@ -46,4 +47,4 @@ double distance_to(const Polyline& line, const Point& p, double* arc_length = nu
 // "(x, y)" with 6 significant digits, for messages.
 std::string format_point(const Point& p);
 
-}  // namespace tfmb::input
+}  // namespace tfmb::geometry

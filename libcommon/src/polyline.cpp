@@ -1,10 +1,10 @@
-#include "polyline.hpp"
+#include "tfmb/common/polyline.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-namespace tfmb::input {
+namespace tfmb::geometry {
 
 double length(const Polyline& line) {
   double total = 0.0;
@@ -20,7 +20,7 @@ Polyline reversed(Polyline line) {
 Polyline points_at(const Polyline& line, const std::vector<double>& arc_lengths) {
   Polyline out;
   out.reserve(arc_lengths.size());
-  for (double s : arc_lengths) out.push_back(geometry::point_at_length(line, s));
+  for (double s : arc_lengths) out.push_back(point_at_length(line, s));
   return out;
 }
 
@@ -37,7 +37,7 @@ Polyline resample(const Polyline& line, int segments) {
 std::vector<Point> vertex_normals(const Polyline& line, double max_miter) {
   const std::size_t n = line.size();
   std::vector<Point> segment(n - 1);
-  for (std::size_t i = 0; i + 1 < n; ++i) segment[i] = geometry::left_normal(line[i], line[i + 1]);
+  for (std::size_t i = 0; i + 1 < n; ++i) segment[i] = left_normal(line[i], line[i + 1]);
   std::vector<Point> normals(n);
   normals[0] = segment[0];
   normals[n - 1] = segment[n - 2];
@@ -61,7 +61,7 @@ Polyline offset(const Polyline& line, double distance) {
 Point mean_left_normal(const Polyline& line) {
   Point sum = Point::Zero();
   for (std::size_t i = 0; i + 1 < line.size(); ++i) {
-    sum += geometry::left_normal(line[i], line[i + 1]) * (line[i + 1] - line[i]).norm();
+    sum += left_normal(line[i], line[i + 1]) * (line[i + 1] - line[i]).norm();
   }
   return sum;
 }
@@ -118,4 +118,4 @@ std::string format_point(const Point& p) {
   return out.str();
 }
 
-}  // namespace tfmb::input
+}  // namespace tfmb::geometry

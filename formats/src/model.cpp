@@ -1,13 +1,15 @@
-// model.h5 layout: formats/model.md (schema in formats/src/schema_model.cpp).
+// The model kind's one reader and writer: formats/model.md (schema in schema_model.cpp).
+#include "tfmb/formats/model.hpp"
+
+#include <algorithm>
+#include <cmath>
 #include <sstream>
 
-#include "model.hpp"
-#include "tfmb/common/cli.hpp"
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
 #include "tfmb/formats/schema.hpp"
 
-namespace tfmb::input {
+namespace tfmb::formats {
 namespace {
 
 h5::MatrixXdR to_matrix(const Polyline& line) {
@@ -33,15 +35,77 @@ std::vector<std::string> split(const std::string& text) {
   return parts;
 }
 
+// What the schema cannot say: sizes that must agree, a section that is not singular.
+void check_flap(const h5::Reader& r, const std::string& g, const Flap& f) {
+  if (!(f.thickness > 0.0)) r.fail(g, "thickness must be positive");
+  if (!(f.width > 0.0)) r.fail(g, "width must be positive");
+  if (f.reference_curve.size() != static_cast<std::size_t>(f.elements) + 1)
+    r.fail(g + "/reference_curve", "expected elements+1 = " + std::to_string(f.elements + 1) + " rows");
+  if (f.reference_geometry.size() < 2) r.fail(g + "/reference_geometry", "fewer than two points");
+  if (f.inner_wall.size() < 2) r.fail(g + "/inner_wall", "fewer than two points");
+  if (f.outer_wall.size() != f.inner_wall.size())
+    r.fail(g + "/outer_wall", "must have as many points as inner_wall (" + std::to_string(f.inner_wall.size()) + ")");
+  if (f.inner_wall_s.size() != f.inner_wall.size())
+    r.fail(g + "/wall_arc_length", "must have one entry per wall point (" + std::to_string(f.inner_wall.size()) + ")");
+  if (f.solid_outline.size() < 3) r.fail(g + "/solid_outline", "fewer than three points");
+  for (int i = 0; i < 6; ++i)
+    if (!(f.section.stiffness(i, i) > 0.0))
+      r.fail(g + "/section_stiffness", "diagonal entry " + std::to_string(i) + " must be > 0");
+  if (!(f.section.mass(0, 0) >= 0.0)) r.fail(g + "/section_mass", "mass per length must be >= 0");
+}
+
+// Rows (coefficient, power of sigma, power of |p|) of a custom measure function (model 2.1).
+void check_terms(const h5::Reader& r, const std::string& path, const Eigen::MatrixX3d& terms) {
+  for (Eigen::Index i = 0; i < terms.rows(); ++i) {
+    const double p = terms(i, 1), q = terms(i, 2);
+    if (!(p >= 0.0 && q >= 0.0) || p != std::floor(p) || q != std::floor(q))
+      r.fail(path, "row " + std::to_string(i) + ": powers must be integers >= 0");
+  }
+}
+
+// The datasets and values each joint kind needs (model.md, "Joints").
+void check_joint(const h5::Reader& r, const std::string& g, const Joint& j) {
+  for (const std::string* end : {&j.end_a, &j.end_b})
+    if (*end != "start" && *end != "end") r.fail(g, "end '" + *end + "' is neither start nor end");
+  if (j.kind == "flexible") {
+    if (!r.exists(g + "/stiffness_matrix")) r.fail(g, "a flexible joint needs /stiffness_matrix");
+    // Model 2.0 had constant coefficients that no tool read; refuse them rather than ignore them.
+    if ((r.has_attr(g, "measure_lambda") && r.attr_f64(g, "measure_lambda") != 0.0) ||
+        (r.has_attr(g, "measure_mu") && r.attr_f64(g, "measure_mu") != 1.0))
+      r.fail(g, "constant measure_lambda/measure_mu (model 2.0) are not supported; give measure_functions (model 2.1)");
+    check_terms(r, g + "/lambda_terms", j.lambda_terms);
+    check_terms(r, g + "/mu_terms", j.mu_terms);
+  } else if (j.kind == "prismatic") {
+    if (!r.exists(g + "/axis")) r.fail(g, "a prismatic joint needs /axis");
+    if (!(j.axis.norm() > 1e-12)) r.fail(g + "/axis", "zero sliding direction");
+  } else if (j.kind == "prescribed_rotation") {
+    if (j.rotation_table.rows() < 1) r.fail(g, "prescribed_rotation needs /rotation_table with at least one row");
+  } else if (j.kind == "revolute_clearance") {
+    if (!(j.outer_radius >= j.inner_radius))
+      r.fail(g, "outer_radius must be at least inner_radius (bore around the pin)");
+  }
+}
+
 }  // namespace
 
-void write_model(const Model& model, const std::filesystem::path& file,
-                 const formats::Provenance& provenance) {
+const Flap* Model::find_flap(const std::string& name) const {
+  for (const Flap& f : flaps)
+    if (f.name == name) return &f;
+  return nullptr;
+}
+
+void Model::fail(const std::string& object_path, const std::string& what) const {
+  throw BadInput(source.string() + ": " + object_path + ": " + what);
+}
+
+void write_model(const Model& model, const std::filesystem::path& file, const std::string& creator,
+                 const Provenance& provenance) {
   h5::Writer w(file);
-  formats::Header header;
-  header.creator = "tfmb-input " + cli::version();
+  Header header;
+  header.creator = creator;
+  header.geometry = model.geometry;
   header.depth = model.depth;
-  formats::write_header(w, "model", header);
+  write_header(w, "model", header);
   if (!model.title.empty()) w.set_attr("/", "title", model.title);
   w.create_group("/flaps");
   for (std::size_t i = 0; i < model.flaps.size(); ++i) {
@@ -156,6 +220,7 @@ void write_model(const Model& model, const std::filesystem::path& file,
   w.set_attr("/conditions", "reference_length", c.reference_length);
   w.set_attr("/conditions", "yplus_target", c.yplus_target);
   w.set_attr("/conditions", "first_cell_height", c.first_cell_height);
+  w.set_attr("/conditions", "viscous_length", c.viscous_length);
   const ThermalSettings& t = model.thermal;
   w.create_group("/thermal");
   w.set_attr("/thermal", "flow_wall", t.flow_wall);
@@ -191,14 +256,17 @@ void write_model(const Model& model, const std::filesystem::path& file,
   w.set_attr("/analysis", "convergence", a.convergence);
   w.set_attr("/analysis", "acceleration", a.acceleration);
   w.set_attr("/analysis", "relaxation", a.relaxation);
-  formats::write_provenance(w, provenance);
+  write_provenance(w, provenance);
   w.commit();
 }
 
 Model read_model(const std::filesystem::path& file) {
-  const h5::Reader r = formats::open_checked(file, "model");
+  const h5::Reader r = open_checked(file, "model");
   Model model;
-  model.depth = r.attr_f64("/", "depth");
+  model.source = file;
+  const Header header = read_header(r);
+  model.geometry = header.geometry;
+  model.depth = header.depth;
   if (r.has_attr("/", "title")) model.title = r.attr_string("/", "title");
   std::vector<std::pair<std::int64_t, Flap>> flaps;
   for (const auto& name : r.children("/flaps")) {
@@ -227,6 +295,7 @@ Model read_model(const std::filesystem::path& file) {
     f.inner_wall_s = r.read_vector(g + "/wall_arc_length");
     f.outer_wall_s = f.inner_wall_s;
     f.solid_outline = to_polyline(r.read_matrix(g + "/solid_outline", {}, 2));
+    check_flap(r, g, f);
     flaps.emplace_back(r.attr_i64(g, "order"), std::move(f));
   }
   std::sort(flaps.begin(), flaps.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -258,6 +327,7 @@ Model read_model(const std::filesystem::path& file) {
       const auto a = r.read_vector(g + "/axis", 2);
       j.axis = Point(a[0], a[1]);
     }
+    check_joint(r, g, j);
     for (const auto* flap : {&j.flap_a, &j.flap_b}) {
       if (!model.find_flap(*flap)) r.fail(g, "joint refers to unknown flap '" + *flap + "'");
     }
@@ -339,6 +409,7 @@ Model read_model(const std::filesystem::path& file) {
   c.reference_length = r.attr_f64(cg, "reference_length");
   c.yplus_target = r.attr_f64(cg, "yplus_target");
   c.first_cell_height = r.attr_f64(cg, "first_cell_height");
+  if (r.has_attr(cg, "viscous_length")) c.viscous_length = r.attr_f64(cg, "viscous_length");  // 2.5
   ThermalSettings& t = model.thermal;
   t.flow_wall = r.attr_string("/thermal", "flow_wall");
   t.wall_temperature = r.attr_f64("/thermal", "wall_temperature");
@@ -375,4 +446,4 @@ Model read_model(const std::filesystem::path& file) {
   return model;
 }
 
-}  // namespace tfmb::input
+}  // namespace tfmb::formats
