@@ -14,44 +14,59 @@ namespace {
 
 h5::MatrixXdR to_matrix(const Polyline& line) {
   h5::MatrixXdR m(static_cast<Eigen::Index>(line.size()), 2);
-  for (std::size_t i = 0; i < line.size(); ++i) m.row(static_cast<Eigen::Index>(i)) = line[i].transpose();
+  for (std::size_t i = 0; i < line.size(); ++i)
+    m.row(static_cast<Eigen::Index>(i)) = line[i].transpose();
   return m;
 }
 Polyline to_polyline(const h5::MatrixXdR& m) {
   Polyline line;
-  for (Eigen::Index i = 0; i < m.rows(); ++i) line.emplace_back(m(i, 0), m(i, 1));
+  for (Eigen::Index i = 0; i < m.rows(); ++i)
+    line.emplace_back(m(i, 0), m(i, 1));
   return line;
 }
-std::vector<double> to_vector(const Point& p) { return {p.x(), p.y()}; }
+std::vector<double> to_vector(const Point& p) {
+  return {p.x(), p.y()};
+}
 std::string join(const std::vector<std::string>& parts) {
   std::string text;
-  for (const auto& p : parts) text += (text.empty() ? "" : ",") + p;
+  for (const auto& p : parts)
+    text += (text.empty() ? "" : ",") + p;
   return text;
 }
 std::vector<std::string> split(const std::string& text) {
   std::vector<std::string> parts;
   std::stringstream stream(text);
-  for (std::string p; std::getline(stream, p, ',');) parts.push_back(p);
+  for (std::string p; std::getline(stream, p, ',');)
+    parts.push_back(p);
   return parts;
 }
 
 // What the schema cannot say: sizes that must agree, a section that is not singular.
 void check_flap(const h5::Reader& r, const std::string& g, const Flap& f) {
-  if (!(f.thickness > 0.0)) r.fail(g, "thickness must be positive");
-  if (!(f.width > 0.0)) r.fail(g, "width must be positive");
+  if (!(f.thickness > 0.0))
+    r.fail(g, "thickness must be positive");
+  if (!(f.width > 0.0))
+    r.fail(g, "width must be positive");
   if (f.reference_curve.size() != static_cast<std::size_t>(f.elements) + 1)
-    r.fail(g + "/reference_curve", "expected elements+1 = " + std::to_string(f.elements + 1) + " rows");
-  if (f.reference_geometry.size() < 2) r.fail(g + "/reference_geometry", "fewer than two points");
-  if (f.inner_wall.size() < 2) r.fail(g + "/inner_wall", "fewer than two points");
+    r.fail(g + "/reference_curve",
+           "expected elements+1 = " + std::to_string(f.elements + 1) + " rows");
+  if (f.reference_geometry.size() < 2)
+    r.fail(g + "/reference_geometry", "fewer than two points");
+  if (f.inner_wall.size() < 2)
+    r.fail(g + "/inner_wall", "fewer than two points");
   if (f.outer_wall.size() != f.inner_wall.size())
-    r.fail(g + "/outer_wall", "must have as many points as inner_wall (" + std::to_string(f.inner_wall.size()) + ")");
+    r.fail(g + "/outer_wall",
+           "must have as many points as inner_wall (" + std::to_string(f.inner_wall.size()) + ")");
   if (f.inner_wall_s.size() != f.inner_wall.size())
-    r.fail(g + "/wall_arc_length", "must have one entry per wall point (" + std::to_string(f.inner_wall.size()) + ")");
-  if (f.solid_outline.size() < 3) r.fail(g + "/solid_outline", "fewer than three points");
+    r.fail(g + "/wall_arc_length",
+           "must have one entry per wall point (" + std::to_string(f.inner_wall.size()) + ")");
+  if (f.solid_outline.size() < 3)
+    r.fail(g + "/solid_outline", "fewer than three points");
   for (int i = 0; i < 6; ++i)
     if (!(f.section.stiffness(i, i) > 0.0))
       r.fail(g + "/section_stiffness", "diagonal entry " + std::to_string(i) + " must be > 0");
-  if (!(f.section.mass(0, 0) >= 0.0)) r.fail(g + "/section_mass", "mass per length must be >= 0");
+  if (!(f.section.mass(0, 0) >= 0.0))
+    r.fail(g + "/section_mass", "mass per length must be >= 0");
 }
 
 // Rows (coefficient, power of sigma, power of |p|) of a custom measure function (model 2.1).
@@ -66,20 +81,27 @@ void check_terms(const h5::Reader& r, const std::string& path, const Eigen::Matr
 // The datasets and values each joint kind needs (model.md, "Joints").
 void check_joint(const h5::Reader& r, const std::string& g, const Joint& j) {
   for (const std::string* end : {&j.end_a, &j.end_b})
-    if (*end != "start" && *end != "end") r.fail(g, "end '" + *end + "' is neither start nor end");
+    if (*end != "start" && *end != "end")
+      r.fail(g, "end '" + *end + "' is neither start nor end");
   if (j.kind == "flexible") {
-    if (!r.exists(g + "/stiffness_matrix")) r.fail(g, "a flexible joint needs /stiffness_matrix");
+    if (!r.exists(g + "/stiffness_matrix"))
+      r.fail(g, "a flexible joint needs /stiffness_matrix");
     // Model 2.0 had constant coefficients that no tool read; refuse them rather than ignore them.
     if ((r.has_attr(g, "measure_lambda") && r.attr_f64(g, "measure_lambda") != 0.0) ||
         (r.has_attr(g, "measure_mu") && r.attr_f64(g, "measure_mu") != 1.0))
-      r.fail(g, "constant measure_lambda/measure_mu (model 2.0) are not supported; give measure_functions (model 2.1)");
+      r.fail(g,
+             "constant measure_lambda/measure_mu (model 2.0) are not supported; give "
+             "measure_functions (model 2.1)");
     check_terms(r, g + "/lambda_terms", j.lambda_terms);
     check_terms(r, g + "/mu_terms", j.mu_terms);
   } else if (j.kind == "prismatic") {
-    if (!r.exists(g + "/axis")) r.fail(g, "a prismatic joint needs /axis");
-    if (!(j.axis.norm() > 1e-12)) r.fail(g + "/axis", "zero sliding direction");
+    if (!r.exists(g + "/axis"))
+      r.fail(g, "a prismatic joint needs /axis");
+    if (!(j.axis.norm() > 1e-12))
+      r.fail(g + "/axis", "zero sliding direction");
   } else if (j.kind == "prescribed_rotation") {
-    if (j.rotation_table.rows() < 1) r.fail(g, "prescribed_rotation needs /rotation_table with at least one row");
+    if (j.rotation_table.rows() < 1)
+      r.fail(g, "prescribed_rotation needs /rotation_table with at least one row");
   } else if (j.kind == "revolute_clearance") {
     if (!(j.outer_radius >= j.inner_radius))
       r.fail(g, "outer_radius must be at least inner_radius (bore around the pin)");
@@ -90,7 +112,8 @@ void check_joint(const h5::Reader& r, const std::string& g, const Joint& j) {
 
 const Flap* Model::find_flap(const std::string& name) const {
   for (const Flap& f : flaps)
-    if (f.name == name) return &f;
+    if (f.name == name)
+      return &f;
   return nullptr;
 }
 
@@ -106,7 +129,8 @@ void write_model(const Model& model, const std::filesystem::path& file, const st
   header.geometry = model.geometry;
   header.depth = model.depth;
   write_header(w, "model", header);
-  if (!model.title.empty()) w.set_attr("/", "title", model.title);
+  if (!model.title.empty())
+    w.set_attr("/", "title", model.title);
   w.create_group("/flaps");
   for (std::size_t i = 0; i < model.flaps.size(); ++i) {
     const Flap& f = model.flaps[i];
@@ -125,15 +149,18 @@ void write_model(const Model& model, const std::filesystem::path& file, const st
       w.set_attr(g, "poisson_ratio", f.section.poisson_ratio);
       w.set_attr(g, "density", f.section.density);
     }
-    w.write(g + "/reference_geometry", to_matrix(f.reference_geometry), "m", "beam reference line, full resolution");
+    w.write(g + "/reference_geometry", to_matrix(f.reference_geometry), "m",
+            "beam reference line, full resolution");
     w.write(g + "/reference_curve", to_matrix(f.reference_curve), "m", "beam nodes");
     w.write(g + "/section_stiffness", h5::MatrixXdR(f.section.stiffness), "N, N m, N m^2",
             "axial, shear 2, shear 3, torsion, bending 2, bending 3");
-    w.write(g + "/section_mass", h5::MatrixXdR(f.section.mass), "kg/m, kg m", "same order as the stiffness");
+    w.write(g + "/section_mass", h5::MatrixXdR(f.section.mass), "kg/m, kg m",
+            "same order as the stiffness");
     w.write(g + "/inner_wall", to_matrix(f.inner_wall), "m", "surface facing the axis");
     w.write(g + "/outer_wall", to_matrix(f.outer_wall), "m", "opposite surface");
     w.write(g + "/wall_arc_length", f.inner_wall_s, "m", "arc length of each wall point's foot");
-    w.write(g + "/solid_outline", to_matrix(f.solid_outline), "m", "thickness region, counter-clockwise");
+    w.write(g + "/solid_outline", to_matrix(f.solid_outline), "m",
+            "thickness region, counter-clockwise");
   }
   w.create_group("/joints");
   for (const Joint& j : model.joints) {
@@ -154,12 +181,15 @@ void write_model(const Model& model, const std::filesystem::path& file, const st
       w.set_attr(g, "contact_stiffness", j.contact_stiffness);
       w.set_attr(g, "friction", j.friction);
     } else if (j.kind == "flexible") {
-      w.write(g + "/stiffness_matrix", h5::MatrixXdR(j.stiffness_matrix), "N/m, N m/rad", "joint stiffness");
+      w.write(g + "/stiffness_matrix", h5::MatrixXdR(j.stiffness_matrix), "N/m, N m/rad",
+              "joint stiffness");
       w.set_attr(g, "deformation_measure", j.deformation_measure);
       w.set_attr(g, "measure_functions", j.measure_functions);
       if (j.measure_functions == "custom") {
-        w.write(g + "/lambda_terms", h5::MatrixXdR(j.lambda_terms), "1", "lambda: rows (coefficient, power of sigma, power of |p|)");
-        w.write(g + "/mu_terms", h5::MatrixXdR(j.mu_terms), "1", "mu: rows (coefficient, power of sigma, power of |p|)");
+        w.write(g + "/lambda_terms", h5::MatrixXdR(j.lambda_terms), "1",
+                "lambda: rows (coefficient, power of sigma, power of |p|)");
+        w.write(g + "/mu_terms", h5::MatrixXdR(j.mu_terms), "1",
+                "mu: rows (coefficient, power of sigma, power of |p|)");
       }
     } else if (j.kind == "prismatic") {
       w.write(g + "/axis", to_vector(j.axis), "1", "sliding direction");
@@ -200,8 +230,10 @@ void write_model(const Model& model, const std::filesystem::path& file, const st
     w.create_group(g);
     w.set_attr(g, "kind", b.kind);
     w.set_attr(g, "order", static_cast<std::int64_t>(i));
-    if (!b.flap.empty()) w.set_attr(g, "flap", b.flap);
-    if (!b.side.empty()) w.set_attr(g, "side", b.side);
+    if (!b.flap.empty())
+      w.set_attr(g, "flap", b.flap);
+    if (!b.side.empty())
+      w.set_attr(g, "side", b.side);
     w.write(g + "/points", to_matrix(b.points), "m", "boundary piece, domain on the left");
   }
   const FlowConditions& c = model.flow;
@@ -251,7 +283,8 @@ void write_model(const Model& model, const std::filesystem::path& file, const st
   w.set_attr("/analysis", "end_time", a.end_time);
   w.set_attr("/analysis", "time_step", a.time_step);
   w.set_attr("/analysis", "load_steps", static_cast<std::int64_t>(a.load_steps));
-  w.set_attr("/analysis", "max_coupling_iterations", static_cast<std::int64_t>(a.max_coupling_iterations));
+  w.set_attr("/analysis", "max_coupling_iterations",
+             static_cast<std::int64_t>(a.max_coupling_iterations));
   w.set_attr("/analysis", "coupling_tolerance", a.coupling_tolerance);
   w.set_attr("/analysis", "convergence", a.convergence);
   w.set_attr("/analysis", "acceleration", a.acceleration);
@@ -267,7 +300,8 @@ Model read_model(const std::filesystem::path& file) {
   const Header header = read_header(r);
   model.geometry = header.geometry;
   model.depth = header.depth;
-  if (r.has_attr("/", "title")) model.title = r.attr_string("/", "title");
+  if (r.has_attr("/", "title"))
+    model.title = r.attr_string("/", "title");
   std::vector<std::pair<std::int64_t, Flap>> flaps;
   for (const auto& name : r.children("/flaps")) {
     const std::string g = "/flaps/" + name;
@@ -280,13 +314,17 @@ Model read_model(const std::filesystem::path& file) {
     f.elements = static_cast<int>(r.attr_i64(g, "elements"));
     f.curves = split(r.attr_string(g, "curves"));
     f.section.kind = r.attr_string(g, "section_kind");
-    if (r.has_attr(g, "youngs_modulus")) f.section.youngs_modulus = r.attr_f64(g, "youngs_modulus");
-    if (r.has_attr(g, "poisson_ratio")) f.section.poisson_ratio = r.attr_f64(g, "poisson_ratio");
-    if (r.has_attr(g, "density")) f.section.density = r.attr_f64(g, "density");
+    if (r.has_attr(g, "youngs_modulus"))
+      f.section.youngs_modulus = r.attr_f64(g, "youngs_modulus");
+    if (r.has_attr(g, "poisson_ratio"))
+      f.section.poisson_ratio = r.attr_f64(g, "poisson_ratio");
+    if (r.has_attr(g, "density"))
+      f.section.density = r.attr_f64(g, "density");
     f.reference_geometry = to_polyline(r.read_matrix(g + "/reference_geometry", {}, 2));
     f.reference_curve = to_polyline(r.read_matrix(g + "/reference_curve", {}, 2));
     if (f.reference_curve.size() != static_cast<std::size_t>(f.elements) + 1) {
-      r.fail(g + "/reference_curve", "expected elements+1 = " + std::to_string(f.elements + 1) + " rows");
+      r.fail(g + "/reference_curve",
+             "expected elements+1 = " + std::to_string(f.elements + 1) + " rows");
     }
     f.section.stiffness = r.read_matrix(g + "/section_stiffness", 6, 6);
     f.section.mass = r.read_matrix(g + "/section_mass", 6, 6);
@@ -298,8 +336,10 @@ Model read_model(const std::filesystem::path& file) {
     check_flap(r, g, f);
     flaps.emplace_back(r.attr_i64(g, "order"), std::move(f));
   }
-  std::sort(flaps.begin(), flaps.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  for (auto& [order, f] : flaps) model.flaps.push_back(std::move(f));
+  std::sort(flaps.begin(), flaps.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (auto& [order, f] : flaps)
+    model.flaps.push_back(std::move(f));
   for (const auto& name : r.children("/joints")) {
     const std::string g = "/joints/" + name;
     Joint j;
@@ -311,25 +351,38 @@ Model read_model(const std::filesystem::path& file) {
     j.end_b = r.attr_string(g, "end_b");
     const auto p = r.read_vector(g + "/point", 2);
     j.point = Point(p[0], p[1]);
-    if (r.has_attr(g, "stiffness")) j.stiffness = r.attr_f64(g, "stiffness");
-    if (r.has_attr(g, "damping")) j.damping = r.attr_f64(g, "damping");
-    if (r.has_attr(g, "inner_radius")) j.inner_radius = r.attr_f64(g, "inner_radius");
-    if (r.has_attr(g, "outer_radius")) j.outer_radius = r.attr_f64(g, "outer_radius");
-    if (r.has_attr(g, "contact_stiffness")) j.contact_stiffness = r.attr_f64(g, "contact_stiffness");
-    if (r.has_attr(g, "friction")) j.friction = r.attr_f64(g, "friction");
-    if (r.has_attr(g, "deformation_measure")) j.deformation_measure = r.attr_string(g, "deformation_measure");
-    if (r.has_attr(g, "measure_functions")) j.measure_functions = r.attr_string(g, "measure_functions");
-    if (r.exists(g + "/lambda_terms")) j.lambda_terms = r.read_matrix(g + "/lambda_terms", {}, 3);
-    if (r.exists(g + "/mu_terms")) j.mu_terms = r.read_matrix(g + "/mu_terms", {}, 3);
-    if (r.exists(g + "/stiffness_matrix")) j.stiffness_matrix = r.read_matrix(g + "/stiffness_matrix", 6, 6);
-    if (r.exists(g + "/rotation_table")) j.rotation_table = r.read_matrix(g + "/rotation_table", {}, 2);
+    if (r.has_attr(g, "stiffness"))
+      j.stiffness = r.attr_f64(g, "stiffness");
+    if (r.has_attr(g, "damping"))
+      j.damping = r.attr_f64(g, "damping");
+    if (r.has_attr(g, "inner_radius"))
+      j.inner_radius = r.attr_f64(g, "inner_radius");
+    if (r.has_attr(g, "outer_radius"))
+      j.outer_radius = r.attr_f64(g, "outer_radius");
+    if (r.has_attr(g, "contact_stiffness"))
+      j.contact_stiffness = r.attr_f64(g, "contact_stiffness");
+    if (r.has_attr(g, "friction"))
+      j.friction = r.attr_f64(g, "friction");
+    if (r.has_attr(g, "deformation_measure"))
+      j.deformation_measure = r.attr_string(g, "deformation_measure");
+    if (r.has_attr(g, "measure_functions"))
+      j.measure_functions = r.attr_string(g, "measure_functions");
+    if (r.exists(g + "/lambda_terms"))
+      j.lambda_terms = r.read_matrix(g + "/lambda_terms", {}, 3);
+    if (r.exists(g + "/mu_terms"))
+      j.mu_terms = r.read_matrix(g + "/mu_terms", {}, 3);
+    if (r.exists(g + "/stiffness_matrix"))
+      j.stiffness_matrix = r.read_matrix(g + "/stiffness_matrix", 6, 6);
+    if (r.exists(g + "/rotation_table"))
+      j.rotation_table = r.read_matrix(g + "/rotation_table", {}, 2);
     if (r.exists(g + "/axis")) {
       const auto a = r.read_vector(g + "/axis", 2);
       j.axis = Point(a[0], a[1]);
     }
     check_joint(r, g, j);
     for (const auto* flap : {&j.flap_a, &j.flap_b}) {
-      if (!model.find_flap(*flap)) r.fail(g, "joint refers to unknown flap '" + *flap + "'");
+      if (!model.find_flap(*flap))
+        r.fail(g, "joint refers to unknown flap '" + *flap + "'");
     }
     model.joints.push_back(j);
   }
@@ -350,21 +403,25 @@ Model read_model(const std::filesystem::path& file) {
       if (!(s.axis.norm() > 1e-12))
         r.fail(g + "/axis", "zero sliding direction");
     }
-    if (!model.find_flap(s.flap)) r.fail(g, "support refers to unknown flap '" + s.flap + "'");
+    if (!model.find_flap(s.flap))
+      r.fail(g, "support refers to unknown flap '" + s.flap + "'");
     model.supports.push_back(s);
   }
   DomainSettings& d = model.domain.settings;
   d.kind = r.attr_string("/domain", "kind");
   auto optional_f64 = [&](const std::string& object, const std::string& name, double& target) {
-    if (r.has_attr(object, name)) target = r.attr_f64(object, name);
+    if (r.has_attr(object, name))
+      target = r.attr_f64(object, name);
   };
   optional_f64("/domain", "plenum_length", d.plenum_length);
   optional_f64("/domain", "downstream_length", d.downstream_length);
   optional_f64("/domain", "farfield_height", d.farfield_height);
   optional_f64("/domain", "plate_length", d.plate_length);
   optional_f64("/domain", "upstream_length", d.upstream_length);
-  if (r.has_attr("/domain", "boattail")) d.boattail = r.attr_i64("/domain", "boattail") != 0;
-  if (r.has_attr("/domain", "wall_curve")) d.wall_curve = r.attr_string("/domain", "wall_curve");
+  if (r.has_attr("/domain", "boattail"))
+    d.boattail = r.attr_i64("/domain", "boattail") != 0;
+  if (r.has_attr("/domain", "wall_curve"))
+    d.wall_curve = r.attr_string("/domain", "wall_curve");
   if (r.is_group("/domain/boundaries")) {
     std::vector<std::pair<std::int64_t, DomainBoundary>> pieces;
     for (const auto& name : r.children("/domain/boundaries")) {
@@ -372,13 +429,17 @@ Model read_model(const std::filesystem::path& file) {
       DomainBoundary b;
       b.name = name;
       b.kind = r.attr_string(g, "kind");
-      if (r.has_attr(g, "flap")) b.flap = r.attr_string(g, "flap");
-      if (r.has_attr(g, "side")) b.side = r.attr_string(g, "side");
+      if (r.has_attr(g, "flap"))
+        b.flap = r.attr_string(g, "flap");
+      if (r.has_attr(g, "side"))
+        b.side = r.attr_string(g, "side");
       b.points = to_polyline(r.read_matrix(g + "/points", {}, 2));
-      if (b.points.size() < 2) r.fail(g + "/points", "a boundary piece needs at least 2 points");
+      if (b.points.size() < 2)
+        r.fail(g + "/points", "a boundary piece needs at least 2 points");
       pieces.emplace_back(r.attr_i64(g, "order"), std::move(b));
     }
-    std::sort(pieces.begin(), pieces.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::sort(pieces.begin(), pieces.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
     for (std::size_t i = 0; i < pieces.size(); ++i) {
       if (pieces[i].first != static_cast<std::int64_t>(i)) {
         r.fail("/domain/boundaries", "the 'order' attributes must be 0..n-1 without gaps");
@@ -389,7 +450,8 @@ Model read_model(const std::filesystem::path& file) {
       const auto& a = model.domain.boundaries[i];
       const auto& b = model.domain.boundaries[(i + 1) % model.domain.boundaries.size()];
       if ((a.points.back() - b.points.front()).norm() > 1e-9 * (1.0 + a.points.back().norm())) {
-        r.fail("/domain/boundaries/" + a.name, "does not end where '" + b.name + "' starts: the loop is open");
+        r.fail("/domain/boundaries/" + a.name,
+               "does not end where '" + b.name + "' starts: the loop is open");
       }
     }
   }
@@ -409,7 +471,8 @@ Model read_model(const std::filesystem::path& file) {
   c.reference_length = r.attr_f64(cg, "reference_length");
   c.yplus_target = r.attr_f64(cg, "yplus_target");
   c.first_cell_height = r.attr_f64(cg, "first_cell_height");
-  if (r.has_attr(cg, "viscous_length")) c.viscous_length = r.attr_f64(cg, "viscous_length");  // 2.5
+  if (r.has_attr(cg, "viscous_length"))
+    c.viscous_length = r.attr_f64(cg, "viscous_length");  // 2.5
   ThermalSettings& t = model.thermal;
   t.flow_wall = r.attr_string("/thermal", "flow_wall");
   t.wall_temperature = r.attr_f64("/thermal", "wall_temperature");
@@ -428,8 +491,10 @@ Model read_model(const std::filesystem::path& file) {
   m.cells_upstream = static_cast<int>(r.attr_i64(mc, "cells_upstream"));
   m.leading_edge_spacing = r.attr_f64(mc, "leading_edge_spacing");
   // 2.2; absent in 2.0/2.1 files (off)
-  if (r.has_attr(mc, "cells_per_circle")) m.cells_per_circle = static_cast<int>(r.attr_i64(mc, "cells_per_circle"));
-  if (r.has_attr(mc, "end_cells")) m.end_cells = static_cast<int>(r.attr_i64(mc, "end_cells"));
+  if (r.has_attr(mc, "cells_per_circle"))
+    m.cells_per_circle = static_cast<int>(r.attr_i64(mc, "cells_per_circle"));
+  if (r.has_attr(mc, "end_cells"))
+    m.end_cells = static_cast<int>(r.attr_i64(mc, "end_cells"));
   m.solid_cells_per_element = static_cast<int>(r.attr_i64(mc, "solid_cells_per_element"));
   m.solid_layers = static_cast<int>(r.attr_i64(mc, "solid_layers"));
   AnalysisSettings& a = model.analysis;

@@ -151,10 +151,11 @@ Schema model_schema() {
                                "length for the Reynolds number of the y+ estimate (0: 0.1 m)", 0.0));
   s.attributes.push_back(nattr("/conditions", "yplus_target", "1", "y+ the first cell was sized for (0: height given)", 0.0));
   s.attributes.push_back(nattr("/conditions", "first_cell_height", "m", "first cell height at walls", 0.0));
-  s.attributes.push_back(nattr("/conditions", "viscous_length", "m",
-                               "nu/u_tau of the flat-plate skin-friction estimate: a cell height h has "
-                               "y+ = h / viscous_length (0: not recorded)",
-                               0.0, std::nullopt, false));
+  s.attributes.push_back(
+      nattr("/conditions", "viscous_length", "m",
+            "nu/u_tau of the flat-plate skin-friction estimate: a cell height h has "
+            "y+ = h / viscous_length (0: not recorded)",
+            0.0, std::nullopt, false));
   // Thermal settings.
   s.attributes.push_back(sattr("/thermal", "flow_wall", "thermal wall condition of the flow solver",
                                {"adiabatic", "isothermal"}));

@@ -8,7 +8,8 @@ namespace tfmb::geometry {
 
 double length(const Polyline& line) {
   double total = 0.0;
-  for (std::size_t i = 1; i < line.size(); ++i) total += (line[i] - line[i - 1]).norm();
+  for (std::size_t i = 1; i < line.size(); ++i)
+    total += (line[i] - line[i - 1]).norm();
   return total;
 }
 
@@ -20,14 +21,16 @@ Polyline reversed(Polyline line) {
 Polyline points_at(const Polyline& line, const std::vector<double>& arc_lengths) {
   Polyline out;
   out.reserve(arc_lengths.size());
-  for (double s : arc_lengths) out.push_back(point_at_length(line, s));
+  for (double s : arc_lengths)
+    out.push_back(point_at_length(line, s));
   return out;
 }
 
 Polyline resample(const Polyline& line, int segments) {
   const double total = length(line);
   std::vector<double> s(static_cast<std::size_t>(segments) + 1);
-  for (int i = 0; i <= segments; ++i) s[static_cast<std::size_t>(i)] = total * i / segments;
+  for (int i = 0; i <= segments; ++i)
+    s[static_cast<std::size_t>(i)] = total * i / segments;
   Polyline out = points_at(line, s);
   out.front() = line.front();  // exact ends: joints and supports sit there
   out.back() = line.back();
@@ -37,13 +40,15 @@ Polyline resample(const Polyline& line, int segments) {
 std::vector<Point> vertex_normals(const Polyline& line, double max_miter) {
   const std::size_t n = line.size();
   std::vector<Point> segment(n - 1);
-  for (std::size_t i = 0; i + 1 < n; ++i) segment[i] = left_normal(line[i], line[i + 1]);
+  for (std::size_t i = 0; i + 1 < n; ++i)
+    segment[i] = left_normal(line[i], line[i + 1]);
   std::vector<Point> normals(n);
   normals[0] = segment[0];
   normals[n - 1] = segment[n - 2];
   for (std::size_t i = 1; i + 1 < n; ++i) {
     Point bisector = segment[i - 1] + segment[i];
-    if (bisector.norm() < 1e-12) bisector = segment[i];  // a full turn back: no mitre exists
+    if (bisector.norm() < 1e-12)
+      bisector = segment[i];  // a full turn back: no mitre exists
     bisector.normalize();
     const double cos_half = std::max(bisector.dot(segment[i]), 1.0 / max_miter);
     normals[i] = bisector / cos_half;
@@ -54,7 +59,8 @@ std::vector<Point> vertex_normals(const Polyline& line, double max_miter) {
 Polyline offset(const Polyline& line, double distance) {
   const auto normals = vertex_normals(line);
   Polyline out(line.size());
-  for (std::size_t i = 0; i < line.size(); ++i) out[i] = line[i] + distance * normals[i];
+  for (std::size_t i = 0; i < line.size(); ++i)
+    out[i] = line[i] + distance * normals[i];
   return out;
 }
 
@@ -71,7 +77,8 @@ std::optional<Crossing> self_intersection(const Polyline& line, bool closed) {
   auto end = [&](std::size_t i) { return line[(i + 1) % line.size()]; };
   for (std::size_t i = 0; i < segments; ++i) {
     for (std::size_t j = i + 2; j < segments; ++j) {
-      if (closed && i == 0 && j == segments - 1) continue;
+      if (closed && i == 0 && j == segments - 1)
+        continue;
       if (auto p = geometry::segment_intersection(line[i], end(i), line[j], end(j))) {
         return Crossing{i, j, *p};
       }
@@ -85,10 +92,13 @@ std::optional<Crossing> crossing(const Polyline& a, const Polyline& b,
   for (std::size_t i = 0; i + 1 < a.size(); ++i) {
     for (std::size_t j = 0; j + 1 < b.size(); ++j) {
       auto p = geometry::segment_intersection(a[i], a[i + 1], b[j], b[j + 1]);
-      if (!p) continue;
+      if (!p)
+        continue;
       bool ignored = false;
-      for (const Point& q : ignore_near) ignored |= (*p - q).norm() <= ignore_radius;
-      if (!ignored) return Crossing{i, j, *p};
+      for (const Point& q : ignore_near)
+        ignored |= (*p - q).norm() <= ignore_radius;
+      if (!ignored)
+        return Crossing{i, j, *p};
     }
   }
   return std::nullopt;
@@ -107,7 +117,8 @@ double distance_to(const Polyline& line, const Point& p, double* arc_length) {
     }
     s += seg;
   }
-  if (arc_length) *arc_length = best_s;
+  if (arc_length)
+    *arc_length = best_s;
   return best;
 }
 

@@ -4,10 +4,10 @@
 
 #include <cmath>
 
+#include "run_tool.hpp"
 #include "tfmb-input/case_file.hpp"
 #include "tfmb-input/model_build.hpp"
 #include "tfmb/common/polyline.hpp"
-#include "run_tool.hpp"
 
 using namespace tfmb::input;
 using tfmb::geometry::distance_to;

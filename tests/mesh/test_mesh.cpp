@@ -5,12 +5,12 @@
 #include <cmath>
 #include <set>
 
-#include "tfmb-input/case_file.hpp"
-#include "tfmb-mesh/mesh_tools.hpp"
-#include "tfmb-input/model_build.hpp"
-#include "tfmb/common/polyline.hpp"
-#include "tfmb/common/errors.hpp"
 #include "run_tool.hpp"
+#include "tfmb-input/case_file.hpp"
+#include "tfmb-input/model_build.hpp"
+#include "tfmb-mesh/mesh_tools.hpp"
+#include "tfmb/common/errors.hpp"
+#include "tfmb/common/polyline.hpp"
 #include "tfmb/formats/files.hpp"
 
 using namespace tfmb;

@@ -556,7 +556,8 @@ Model build_model(const CaseSpec& spec, const std::vector<Curve>& curves, const 
   model.flow.viscous_length = viscous_length(model.flow);
   if (model.flow.yplus_target > 0.0) {
     if (model.flow.viscous_length <= 0.0)
-      throw BadInput(spec.file.string() + ": flow.yplus_target: the flow conditions give no y+ estimate "
+      throw BadInput(spec.file.string() +
+                     ": flow.yplus_target: the flow conditions give no y+ estimate "
                      "(stagnation temperature, pressures and gamma must describe a flow); give "
                      "flow.first_cell_height instead");
     model.flow.first_cell_height = model.flow.yplus_target * model.flow.viscous_length;

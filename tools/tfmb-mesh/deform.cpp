@@ -11,8 +11,8 @@
 #include <sstream>
 
 #include "mesh_tools.hpp"
-#include "tfmb/common/polyline.hpp"
 #include "tfmb/common/errors.hpp"
+#include "tfmb/common/polyline.hpp"
 #include "tfmb/formats/schema.hpp"
 
 namespace tfmb::mesh {
@@ -171,8 +171,9 @@ Mesh deform_mesh(const Mesh& mesh, const std::vector<WallDisplacement>& walls, D
           // the wall's length they take the nearest curve point's displacement.
           const double loose = 0.05 * std::max(boundary_length, 1e-3 * extent);
           if (best > loose) {
-            throw BadInput("walldisp: node " + std::to_string(node) + " at " + geometry::format_point(p) + " of wall '" +
-                           name + "' is " + num(best) + " m from the walldisp curves of " +
+            throw BadInput("walldisp: node " + std::to_string(node) + " at " +
+                           geometry::format_point(p) + " of wall '" + name + "' is " + num(best) +
+                           " m from the walldisp curves of " +
                            (same_name.empty() ? "flap '" + b.flap + "'" : "'" + name + "'") +
                            ": the displacement was computed for another mesh or geometry");
           }
@@ -257,9 +258,12 @@ Mesh deform_mesh(const Mesh& mesh, const std::vector<WallDisplacement>& walls, D
     };
     const auto nodes = nodes_of(c);
     for (auto node : nodes) where += x[static_cast<std::size_t>(node)] / static_cast<double>(nodes.size());
-    throw BadInput("deform: the displacement would invert " + std::to_string(q.invalid_cells) + " cells (first: cell " +
-                   std::to_string(c) + " near " + geometry::format_point(where) + "); the largest admissible fraction "
-                   "of this displacement is " + num(lo) + " (apply it in smaller steps or remesh)");
+    throw BadInput("deform: the displacement would invert " + std::to_string(q.invalid_cells) +
+                   " cells (first: cell " + std::to_string(c) + " near " +
+                   geometry::format_point(where) +
+                   "); the largest admissible fraction "
+                   "of this displacement is " +
+                   num(lo) + " (apply it in smaller steps or remesh)");
   }
   report.admissible_fraction = 1.0;
   report.quality = mesh_quality(out);

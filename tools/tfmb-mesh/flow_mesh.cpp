@@ -133,7 +133,8 @@ struct Run {
 }  // namespace
 
 std::optional<double> estimated_yplus(const Model& model, double height) {
-  if (!(model.flow.viscous_length > 0.0)) return std::nullopt;
+  if (!(model.flow.viscous_length > 0.0))
+    return std::nullopt;
   return height / model.flow.viscous_length;
 }
 
@@ -231,11 +232,13 @@ Mesh build_flow_mesh(const Model& model, const FlowMeshOptions& options, FlowMes
   double clearance = 1e300;
   for (std::size_t a = 0; a < runs.size(); ++a) {
     for (std::size_t b = a + 1; b < runs.size(); ++b) {
-      for (const Point& p : runs[a].nodes) clearance = std::min(clearance, distance_to(runs[b].nodes, p));
+      for (const Point& p : runs[a].nodes)
+        clearance = std::min(clearance, distance_to(runs[b].nodes, p));
     }
   }
   for (std::size_t i = 0; i < np; ++i) {
-    if (!is_wall(i)) clearance = std::min(clearance, 2.0 * length(pieces[i].points));
+    if (!is_wall(i))
+      clearance = std::min(clearance, 2.0 * length(pieces[i].points));
   }
   while (layers > 0 && thickness(layers) > 0.25 * clearance) --layers;
   // Where a wall is concave on the flow side the layer directions converge and meet about one
@@ -289,8 +292,9 @@ Mesh build_flow_mesh(const Model& model, const FlowMeshOptions& options, FlowMes
         const Point& d = points[static_cast<std::size_t>(id(i, k + 1))];
         const double area = 0.5 * ((c - a).x() * (d - b).y() - (c - a).y() * (d - b).x());
         if (area <= 0.0) {
-          throw BadInput("boundary layer folds at " + format_point(a) + " (layer " + std::to_string(k + 1) +
-                         " of " + std::to_string(layers) + "): reduce mesh.max_layers, mesh.growth or the "
+          throw BadInput("boundary layer folds at " + format_point(a) + " (layer " +
+                         std::to_string(k + 1) + " of " + std::to_string(layers) +
+                         "): reduce mesh.max_layers, mesh.growth or the "
                          "first layer height, or refine mesh.wall_size");
         }
       }

@@ -60,16 +60,19 @@ int run(const Options& options, const Logger& log) {
       formats::write_header(w, "flowmesh", header);
       formats::write_mesh(w, mesh);
       write_quality(w, report.quality);
-      if (report.estimated_yplus) w.set_attr("/mesh", "estimated_yplus", *report.estimated_yplus);
+      if (report.estimated_yplus)
+        w.set_attr("/mesh", "estimated_yplus", *report.estimated_yplus);
       w.set_attr("/mesh", "first_layer_height", report.first_layer_height);
       w.set_attr("/mesh", "boundary_layers", static_cast<std::int64_t>(report.boundary_layers));
       formats::write_provenance(w, provenance(options, {options.input}));
       w.commit();
     }
     formats::write_xdmf_sidecar(options.output);
-    log.info("quality: " + quality_text(report.quality) + ", " + std::to_string(report.boundary_layers) +
-             " wall layers, first layer " + num(report.first_layer_height) + " m, estimated y+ " +
-             (report.estimated_yplus ? num(*report.estimated_yplus) : std::string("not recorded in the model")));
+    log.info("quality: " + quality_text(report.quality) + ", " +
+             std::to_string(report.boundary_layers) + " wall layers, first layer " +
+             num(report.first_layer_height) + " m, estimated y+ " +
+             (report.estimated_yplus ? num(*report.estimated_yplus)
+                                     : std::string("not recorded in the model")));
     log.summary("wrote " + options.output.string() + ": " + std::to_string(mesh.node_count()) + " nodes, " +
                 std::to_string(mesh.triangles.rows()) + " triangles, " + std::to_string(mesh.quads.rows()) +
                 " quads, " + std::to_string(mesh.boundaries.size()) + " boundaries (" + num(clock.seconds(), 3) + " s)");

@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "mesh_tools.hpp"
-#include "tfmb/common/polyline.hpp"
 #include "tfmb/common/errors.hpp"
+#include "tfmb/common/polyline.hpp"
 
 namespace tfmb::mesh {
 namespace {
@@ -14,7 +14,8 @@ namespace {
 // The point at arc length s on `line` and the same segment parameter on `a` and `b`, which have
 // the same number of points (walls offset from the reference line vertex by vertex).
 void sample(const Polyline& line, const Polyline& a, const Polyline& b,
-            const std::vector<double>& cumulative, double s, Eigen::Vector2d& on_a, Eigen::Vector2d& on_b) {
+            const std::vector<double>& cumulative, double s, Eigen::Vector2d& on_a,
+            Eigen::Vector2d& on_b) {
   std::size_t k = static_cast<std::size_t>(std::upper_bound(cumulative.begin(), cumulative.end(), s) - cumulative.begin());
   k = std::clamp<std::size_t>(k, 1, line.size() - 1) - 1;
   const double seg = cumulative[k + 1] - cumulative[k];

@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "mesh_tools.hpp"
-#include "tfmb/common/polyline.hpp"
 #include "tfmb/common/errors.hpp"
+#include "tfmb/common/polyline.hpp"
 
 namespace tfmb::mesh {
 namespace {
@@ -85,7 +85,8 @@ Mesh build_structured_mesh(const Model& model, double scale, FlowMeshReport& rep
   const double h1 = viscous ? model.flow.first_cell_height * scale : 0.0;
   auto find = [&](const std::string& name) -> const formats::DomainBoundary& {
     for (const auto& b : d.boundaries) {
-      if (b.name == name) return b;
+      if (b.name == name)
+        return b;
     }
     throw BadInput("model: domain boundary '" + name + "' missing for domain kind '" + d.settings.kind + "'");
   };
@@ -122,7 +123,8 @@ Mesh build_structured_mesh(const Model& model, double scale, FlowMeshReport& rep
     mesh.boundaries["inflow"] = boundary("inflow", in);
     report.boundary_layers = 0;
     report.first_layer_height = h1 > 0 ? min_height * eta[1] : 0.0;
-    if (report.first_layer_height > 0) report.estimated_yplus = estimated_yplus(model, report.first_layer_height);
+    if (report.first_layer_height > 0)
+      report.estimated_yplus = estimated_yplus(model, report.first_layer_height);
     return mesh;
   }
   if (d.settings.kind == "flatplate") {

@@ -43,7 +43,7 @@ struct Flap {
   Polyline reference_curve;     // [m] beam nodes: elements+1 points at equal arc length
   // Wall surfaces offset by +-thickness/2; "inner" is the side facing the nozzle axis (y = 0) for
   // upper/lower flaps, the right side of the reference direction for half = none.
-  Polyline inner_wall, outer_wall;  // [m], start to end
+  Polyline inner_wall, outer_wall;                 // [m], start to end
   std::vector<double> inner_wall_s, outer_wall_s;  // [m] arc length on reference_geometry of each
                                                    // wall point's foot
   Polyline solid_outline;  // [m] closed counter-clockwise outline of the thickness region
@@ -53,22 +53,23 @@ struct Joint {
   std::string name;
   std::string kind;  // rigid | revolute | revolute_spring | revolute_clearance | flexible |
                      // prescribed_rotation | prismatic
-  std::string flap_a, end_a, flap_b, end_b;  // ends: "start" | "end"
-  Point point = Point::Zero();               // [m]
-  double stiffness = 0.0;     // revolute_spring [N m/rad]
-  double damping = 0.0;       // revolute_spring [N m s/rad]
-  double inner_radius = 0.0;  // revolute_clearance [m] (pin)
-  double outer_radius = 0.0;  // revolute_clearance [m] (bore)
-  double contact_stiffness = 0.0;  // revolute_clearance [N/m]
-  double friction = 0.0;           // revolute_clearance [1]
+  std::string flap_a, end_a, flap_b, end_b;    // ends: "start" | "end"
+  Point point = Point::Zero();                 // [m]
+  double stiffness = 0.0;                      // revolute_spring [N m/rad]
+  double damping = 0.0;                        // revolute_spring [N m s/rad]
+  double inner_radius = 0.0;                   // revolute_clearance [m] (pin)
+  double outer_radius = 0.0;                   // revolute_clearance [m] (bore)
+  double contact_stiffness = 0.0;              // revolute_clearance [N/m]
+  double friction = 0.0;                       // revolute_clearance [1]
   Matrix6 stiffness_matrix = Matrix6::Zero();  // flexible: [N/m] (1-3), [N m/rad] (4-6)
   std::string deformation_measure;             // flexible: "proposed" | "typical"
   /// flexible: lambda(sigma, p) and mu(sigma, p) of the proposed measures: "default", the seed's
   /// cases "1a" ... "4d", or "custom" with the polynomial terms below (model.md).
   std::string measure_functions = "default";
-  Eigen::MatrixX3d lambda_terms, mu_terms;     // flexible, custom: rows (coefficient, power of sigma, power of |p|)
-  Eigen::MatrixX2d rotation_table;             // prescribed_rotation: rows (time [s], angle [rad])
-  Point axis = Point::Zero();                  // prismatic: sliding direction (unit vector)
+  Eigen::MatrixX3d lambda_terms,
+      mu_terms;  // flexible, custom: rows (coefficient, power of sigma, power of |p|)
+  Eigen::MatrixX2d rotation_table;  // prescribed_rotation: rows (time [s], angle [rad])
+  Point axis = Point::Zero();       // prismatic: sliding direction (unit vector)
 };
 
 struct Support {
@@ -91,8 +92,8 @@ struct DomainBoundary {
 };
 
 struct DomainSettings {
-  std::string kind = "nozzle";   // nozzle | channel | flatplate
-  double plenum_length = 0.0;    // [m] nozzle: inflow face upstream of the first flap start
+  std::string kind = "nozzle";     // nozzle | channel | flatplate
+  double plenum_length = 0.0;      // [m] nozzle: inflow face upstream of the first flap start
   double downstream_length = 0.0;  // [m] nozzle: outflow face downstream of the nozzle exit
   double farfield_height = 0.0;    // [m] nozzle: |y| of the far-field boundary; flatplate: top
   bool boattail = false;           // nozzle: the last flap of each half returns to the nacelle
@@ -117,31 +118,31 @@ struct FlowConditions {
   double gas_constant = 287.05;         // [J/(kg K)]
   double prandtl = 0.72, turbulent_prandtl = 0.9;
   std::string turbulence = "spalart_allmaras";  // spalart_allmaras | laminar | inviscid
-  double reference_length = 0.0;        // [m] for the Reynolds number and y+ estimate
-  double yplus_target = 0.0;            // [1] 0: first_cell_height given
-  double first_cell_height = 0.0;       // [m] resolved (given or from yplus_target)
+  double reference_length = 0.0;                // [m] for the Reynolds number and y+ estimate
+  double yplus_target = 0.0;                    // [1] 0: first_cell_height given
+  double first_cell_height = 0.0;               // [m] resolved (given or from yplus_target)
   // [m] nu / u_tau of the flat-plate skin-friction estimate tfmb-input sizes the first cell with:
   // a cell height h has y+ = h / viscous_length. 0: not recorded (model files before 2.5).
   double viscous_length = 0.0;
 };
 
 struct ThermalSettings {
-  std::string flow_wall = "adiabatic";       // adiabatic | isothermal
-  double wall_temperature = 0.0;             // [K] isothermal
+  std::string flow_wall = "adiabatic";              // adiabatic | isothermal
+  double wall_temperature = 0.0;                    // [K] isothermal
   std::string solid_boundary = "wall_temperature";  // wall_temperature | convection |
                                                     // convection_radiation
-  double emissivity = 0.0;                   // [1]
-  double reference_temperature = 294.26;     // [K] stress-free temperature
+  double emissivity = 0.0;                          // [1]
+  double reference_temperature = 294.26;            // [K] stress-free temperature
 };
 
 struct MeshControls {
-  double wall_size = 0.0;          // [m] cell length along walls
-  double far_size = 0.0;           // [m] cell size at the far field
-  double growth = 1.2;             // [1] boundary layer growth ratio
-  int max_layers = 40;             // boundary layer layers (at most)
-  double scale = 1.0;              // multiplies every size (coarse test meshes: > 1)
+  double wall_size = 0.0;  // [m] cell length along walls
+  double far_size = 0.0;   // [m] cell size at the far field
+  double growth = 1.2;     // [1] boundary layer growth ratio
+  int max_layers = 40;     // boundary layer layers (at most)
+  double scale = 1.0;      // multiplies every size (coarse test meshes: > 1)
   int cells_along = 0, cells_across = 0, cells_upstream = 0;  // structured domains
-  double leading_edge_spacing = 0.0;  // [m] flatplate
+  double leading_edge_spacing = 0.0;                          // [m] flatplate
   // Nozzle walls: at most 2 pi R / cells_per_circle along a wall of radius of curvature R, so
   // a tight throat arc is resolved like a circle of that many cells (0: off; model 2.2).
   int cells_per_circle = 0;
@@ -153,19 +154,19 @@ struct MeshControls {
 };
 
 struct AnalysisSettings {
-  std::string kind = "oneway";    // oneway | twoway | structure | flow
-  std::string time = "static";    // static | dynamic
+  std::string kind = "oneway";             // oneway | twoway | structure | flow
+  std::string time = "static";             // static | dynamic
   double end_time = 0.0, time_step = 0.0;  // [s] dynamic
   int load_steps = 10;
   int max_coupling_iterations = 20;
-  double coupling_tolerance = 1e-4;          // [m] wall displacement change
-  std::string convergence = "absolute";      // absolute | relative | residual-relative
-  std::string acceleration = "aitken";       // constant | aitken | iqn-ils
-  double relaxation = 0.5;                   // [1]
+  double coupling_tolerance = 1e-4;      // [m] wall displacement change
+  std::string convergence = "absolute";  // absolute | relative | residual-relative
+  std::string acceleration = "aitken";   // constant | aitken | iqn-ils
+  double relaxation = 0.5;               // [1]
 };
 
 struct Model {
-  std::filesystem::path source;  // the file it was read from ("" if built in memory)
+  std::filesystem::path source;     // the file it was read from ("" if built in memory)
   std::string geometry = "planar";  // header: planar | axisymmetric
   std::string title;
   double depth = 1.0;  // [m]

@@ -9,9 +9,6 @@
 
 namespace tfmb::geometry {
 
-
-
-
 double length(const Polyline& line);
 Polyline reversed(Polyline line);
 // n+1 points at equal arc length from start to end (n >= 1).
