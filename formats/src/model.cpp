@@ -92,8 +92,10 @@ void check_joint(const h5::Reader& r, const std::string& g, const Joint& j) {
       r.fail(g,
              "constant measure_lambda/measure_mu (model 2.0) are not supported; give "
              "measure_functions (model 2.1)");
-    check_terms(r, g + "/lambda_terms", j.lambda_terms);
-    check_terms(r, g + "/mu_terms", j.mu_terms);
+    if (j.measure_functions == "custom") {
+      check_terms(r, g + "/lambda_terms", j.lambda_terms);
+      check_terms(r, g + "/mu_terms", j.mu_terms);
+    }
   } else if (j.kind == "prismatic") {
     if (!r.exists(g + "/axis"))
       r.fail(g, "a prismatic joint needs /axis");
@@ -340,7 +342,7 @@ Model read_model(const std::filesystem::path& file) {
             [](const auto& a, const auto& b) { return a.first < b.first; });
   for (auto& [order, f] : flaps)
     model.flaps.push_back(std::move(f));
-  for (const auto& name : r.children("/joints")) {
+  for (const auto& name : r.is_group("/joints") ? r.children("/joints") : std::vector<std::string>{}) {
     const std::string g = "/joints/" + name;
     Joint j;
     j.name = name;
@@ -386,7 +388,7 @@ Model read_model(const std::filesystem::path& file) {
     }
     model.joints.push_back(j);
   }
-  for (const auto& name : r.children("/supports")) {
+  for (const auto& name : r.is_group("/supports") ? r.children("/supports") : std::vector<std::string>{}) {
     const std::string g = "/supports/" + name;
     Support s;
     s.name = name;

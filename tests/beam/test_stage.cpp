@@ -35,14 +35,23 @@ void erase_prefix(formats::Document& doc, const std::string& prefix) {
 /// Cantilever of 1 m along +x in 3 two-node model elements, clamped at its start.
 fs::path write_cantilever_model(const fs::path& dir, const std::string& joint_kind = "") {
   formats::Document doc = formats::example_document(*formats::find_schema("model"));
-  std::vector<std::vector<double>> line, inner;
+  std::vector<std::vector<double>> line, inner, outer;
+  std::vector<double> arc;
   for (int i = 0; i < 4; ++i) {
     line.push_back({kLength * i / 3.0, 0.0});
     inner.push_back({kLength * i / 3.0, -0.005});
+    outer.push_back({kLength * i / 3.0, 0.005});
+    arc.push_back(kLength * i / 3.0);
   }
+  doc.attributes["/flaps/sample"]["elements"].integer = 3;
   set_matrix(doc.datasets["/flaps/sample/reference_curve"], line);
   set_matrix(doc.datasets["/flaps/sample/reference_geometry"], line);
   set_matrix(doc.datasets["/flaps/sample/inner_wall"], inner);
+  set_matrix(doc.datasets["/flaps/sample/outer_wall"], outer);
+  doc.datasets["/flaps/sample/wall_arc_length"].shape = {4};
+  doc.datasets["/flaps/sample/wall_arc_length"].floats = arc;
+  set_matrix(doc.datasets["/flaps/sample/solid_outline"],
+             {{0.0, -0.005}, {kLength, -0.005}, {kLength, 0.005}, {0.0, 0.005}});
   std::vector<std::vector<double>> k(6, std::vector<double>(6, 0.0)), m(6, std::vector<double>(6, 0.0));
   const double diag_k[6] = {1e7, kGA, kGA, 50.0, kEI, kEI}, diag_m[6] = {1.0, 1.0, 1.0, 2e-4, 1e-4, 1e-4};
   for (int i = 0; i < 6; ++i) {
@@ -51,6 +60,7 @@ fs::path write_cantilever_model(const fs::path& dir, const std::string& joint_ki
   }
   set_matrix(doc.datasets["/flaps/sample/section_stiffness"], k);
   set_matrix(doc.datasets["/flaps/sample/section_mass"], m);
+  erase_prefix(doc, "/domain/boundaries");  // a structure-only model: no flow domain
   if (joint_kind.empty()) {
     erase_prefix(doc, "/joints");
   } else {

@@ -215,10 +215,27 @@ void write_model(const Case& c) {
   rename_prefix(doc, "/flaps/sample", "/flaps/f0");
   doc.attributes["/flaps/f0"]["material"] = text("Ti-Test");  // an alias, other case
   doc.attributes["/flaps/f0"]["elements"] = integer(kElements);
+  // The model reader wants elements+1 beam nodes (the heat stage takes its geometry from the solid
+  // mesh, so a straight line of the flap's length will do) and no references to the example's
+  // flap name 'sample'.
+  {
+    formats::DatasetValue& curve = doc.datasets["/flaps/f0/reference_curve"];
+    curve.shape = {static_cast<std::size_t>(kElements) + 1, 2};
+    curve.floats.clear();
+    for (int i = 0; i <= kElements; ++i) curve.floats.insert(curve.floats.end(), {kLength * i / kElements, 0.0});
+  }
+  std::vector<std::string> unused = {"/supports/", "/domain/boundaries/"};
+  if (!c.two_flaps) unused.push_back("/joints/");  // the two-flap case re-points the joint below
+  for (const std::string& prefix : unused) {
+    std::erase_if(doc.groups, [&](const std::string& g) { return g.rfind(prefix, 0) == 0; });
+    std::erase_if(doc.datasets, [&](const auto& kv) { return kv.first.rfind(prefix, 0) == 0; });
+    std::erase_if(doc.attributes, [&](const auto& kv) { return kv.first.rfind(prefix, 0) == 0; });
+  }
   doc.attributes["/thermal"]["solid_boundary"] = text(c.solid_boundary);
   doc.attributes["/thermal"]["emissivity"] = number(kEmissivity);
   if (c.two_flaps) {
     copy_prefix(doc, "/flaps/f0", "/flaps/f1");
+    doc.attributes["/flaps/f1"]["order"] = integer(1);
     auto& joint = doc.attributes["/joints/sample"];
     joint["flap_a"] = text("f0");
     joint["end_a"] = text("end");

@@ -8,18 +8,12 @@
 
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
+#include "tfmb/formats/model.hpp"
 #include "tfmb/formats/schema.hpp"
 
 namespace tfmb::loads {
 
 namespace {
-
-std::vector<Vec2> read_points(const h5::Reader& file, const std::string& path) {
-  const h5::MatrixXdR m = file.read_matrix(path, std::nullopt, 2);
-  std::vector<Vec2> points(static_cast<std::size_t>(m.rows()));
-  for (Eigen::Index i = 0; i < m.rows(); ++i) points[static_cast<std::size_t>(i)] = {m(i, 0), m(i, 1)};
-  return points;
-}
 
 Side parse_side(const h5::Reader& file, const std::string& object, const std::string& side) {
   if (side == "inner") return Side::inner;
@@ -40,29 +34,26 @@ h5::MatrixXdR rows3(const std::vector<Vec2>& v, bool as_3d = true) {
 }  // namespace
 
 Model read_model(const std::filesystem::path& file) {
-  const h5::Reader reader = formats::open_checked(file, "model");
+  const formats::Model in = formats::read_model(file);
   Model model;
   model.file = file;
-  model.header = formats::read_header(reader);
-  for (const std::string& name : reader.children("/flaps")) {
-    const std::string g = "/flaps/" + name;
+  model.header.geometry = in.geometry;
+  model.header.depth = in.depth;
+  for (const formats::Flap& f : in.flaps) {
     ModelFlap flap;
-    flap.name = name;
-    flap.material = reader.attr_string(g, "material");
-    flap.thickness = reader.attr_f64(g, "thickness");
-    flap.width = reader.attr_f64(g, "width");
-    flap.reference_curve = read_points(reader, g + "/reference_curve");
-    if (reader.exists(g + "/reference_geometry")) flap.reference_geometry = read_points(reader, g + "/reference_geometry");
-    flap.inner_wall = read_points(reader, g + "/inner_wall");
-    flap.outer_wall = read_points(reader, g + "/outer_wall");
-    if (flap.reference_curve.size() < 2) reader.fail(g + "/reference_curve", "fewer than two beam nodes");
-    if (flap.inner_wall.size() < 2) reader.fail(g + "/inner_wall", "fewer than two points");
-    if (flap.outer_wall.size() < 2) reader.fail(g + "/outer_wall", "fewer than two points");
-    if (!(flap.thickness > 0.0)) reader.fail(g, "thickness must be positive");
-    if (!(flap.width > 0.0)) reader.fail(g, "width must be positive");
+    flap.name = f.name;
+    flap.material = f.material;
+    flap.thickness = f.thickness;
+    flap.width = f.width;
+    flap.reference_curve = f.reference_curve;
+    flap.reference_geometry = f.reference_geometry;
+    flap.inner_wall = f.inner_wall;
+    flap.outer_wall = f.outer_wall;
     model.flaps.push_back(std::move(flap));
   }
-  if (model.flaps.empty()) reader.fail("/flaps", "no flaps");
+  if (model.flaps.empty()) in.fail("/flaps", "no flaps: nothing to load");
+  std::sort(model.flaps.begin(), model.flaps.end(),
+            [](const ModelFlap& a, const ModelFlap& b) { return a.name < b.name; });
   return model;
 }
 

@@ -1,9 +1,11 @@
 #include "io.hpp"
 
+#include <algorithm>
 #include <sstream>
 
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
+#include "tfmb/formats/model.hpp"
 #include "tfmb/formats/schema.hpp"
 
 namespace tfmb::matmap {
@@ -45,41 +47,38 @@ MaterialDatabase read_material_db(const std::filesystem::path& file) {
 }
 
 Model read_model(const std::filesystem::path& file) {
-  const h5::Reader reader = formats::open_checked(file, "model");
+  const formats::Model in = formats::read_model(file);
   Model model;
-  model.header = formats::read_header(reader);
-  for (const std::string& name : reader.children("/flaps")) {
-    const std::string g = "/flaps/" + name;
+  model.header.geometry = in.geometry;
+  model.header.depth = in.depth;
+  for (const formats::Flap& f : in.flaps) {
     ModelFlap flap;
-    flap.name = name;
-    flap.material = reader.attr_string(g, "material");
-    flap.thickness = reader.attr_f64(g, "thickness");
-    flap.width = reader.attr_f64(g, "width");
-    const h5::MatrixXdR curve = reader.read_matrix(g + "/reference_curve", std::nullopt, 2);
-    if (curve.rows() < 2) reader.fail(g + "/reference_curve", "fewer than two beam nodes");
-    flap.elements = static_cast<std::size_t>(curve.rows() - 1);
+    flap.name = f.name;
+    flap.material = f.material;
+    flap.thickness = f.thickness;
+    flap.width = f.width;
+    const std::string g = "/flaps/" + f.name;
+    const auto& curve = f.reference_curve;
+    flap.elements = curve.size() - 1;
     // Which side the outer wall is on: from the middle of the reference curve to the nearest
     // outer wall point, against the left normal there.
-    const h5::MatrixXdR outer = reader.read_matrix(g + "/outer_wall", std::nullopt, 2);
-    const Eigen::Index j = (curve.rows() - 1) / 2;
-    const Eigen::Vector2d a = curve.row(j).transpose(), b = curve.row(j + 1).transpose();
+    const std::size_t j = (curve.size() - 1) / 2;
+    const Eigen::Vector2d a = curve[j], b = curve[j + 1];
     const Eigen::Vector2d middle = 0.5 * (a + b);
     const Eigen::Vector2d normal(-(b - a).y(), (b - a).x());
-    Eigen::Index nearest = 0;
-    for (Eigen::Index i = 1; i < outer.rows(); ++i) {
-      if ((outer.row(i).transpose() - middle).norm() < (outer.row(nearest).transpose() - middle).norm()) nearest = i;
+    std::size_t nearest = 0;
+    for (std::size_t i = 1; i < f.outer_wall.size(); ++i) {
+      if ((f.outer_wall[i] - middle).norm() < (f.outer_wall[nearest] - middle).norm()) nearest = i;
     }
-    const double side = normal.dot(outer.row(nearest).transpose() - middle);
-    if (side == 0.0) reader.fail(g + "/outer_wall", "lies on the reference curve: cannot tell the outer side");
+    const double side = normal.dot(f.outer_wall[nearest] - middle);
+    if (side == 0.0) in.fail(g + "/outer_wall", "lies on the reference curve: cannot tell the outer side");
     flap.outer_normal_sign = side > 0.0 ? 1 : -1;
-    if (!(flap.thickness > 0.0)) reader.fail(g, "thickness must be positive");
-    if (!(flap.width > 0.0)) reader.fail(g, "width must be positive");
     model.flaps.push_back(flap);
   }
-  if (reader.has_attr("/thermal", "reference_temperature")) {
-    const double t0 = reader.attr_f64("/thermal", "reference_temperature");
-    if (t0 > 0.0) model.stress_free_temperature = t0;
-  }
+  // The stage's outputs list flaps by name, as the file's groups are.
+  std::sort(model.flaps.begin(), model.flaps.end(),
+            [](const ModelFlap& a, const ModelFlap& b) { return a.name < b.name; });
+  if (in.thermal.reference_temperature > 0.0) model.stress_free_temperature = in.thermal.reference_temperature;
   return model;
 }
 

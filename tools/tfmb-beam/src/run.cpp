@@ -16,60 +16,154 @@
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
 #include "tfmb/formats/files.hpp"
+#include "tfmb/formats/model.hpp"
 #include "tfmb/formats/schema.hpp"
 
 namespace tfmb::beam {
 namespace {
 
-Eigen::Matrix<double, 6, 6> read_6x6(const h5::Reader& f, const std::string& path) {
-  const h5::MatrixXdR m = f.read_matrix(path, 6, 6);
-  return m;
-}
-
-int end_node(const FileModel& fm, const h5::Reader& f, const std::string& flap, const std::string& end,
+int end_node(const FileModel& fm, const formats::Model& in, const std::string& flap, const std::string& end,
              const std::string& where) {
   const auto it = fm.flap_nodes.find(flap);
-  if (it == fm.flap_nodes.end()) f.fail(where, "refers to flap '" + flap + "', which is not in /flaps");
+  if (it == fm.flap_nodes.end()) in.fail(where, "refers to flap '" + flap + "', which is not in /flaps");
   return end == "start" ? it->second.front() : it->second.back();
 }
 
-MeasureFunction read_terms(const h5::Reader& f, const std::string& path) {
-  MeasureFunction fn;
-  if (!f.exists(path)) return fn;  // no terms: identically zero
-  const h5::MatrixXdR t = f.read_matrix(path, {}, 3);
-  for (Eigen::Index r = 0; r < t.rows(); ++r) {
-    if (!(t(r, 1) >= 0.0 && t(r, 2) >= 0.0) || t(r, 1) != std::floor(t(r, 1)) || t(r, 2) != std::floor(t(r, 2)))
-      f.fail(path, "row " + std::to_string(r) + ": powers must be integers >= 0");
-    fn.terms.push_back({t(r, 0), static_cast<int>(t(r, 1)), static_cast<int>(t(r, 2))});
-  }
+// Rows (coefficient, power of sigma, power of |p|); the reader checked the powers.
+MeasureFunction measure_terms(const Eigen::MatrixX3d& rows) {
+  MeasureFunction fn;  // no rows: identically zero
+  for (Eigen::Index r = 0; r < rows.rows(); ++r)
+    fn.terms.push_back({rows(r, 0), static_cast<int>(rows(r, 1)), static_cast<int>(rows(r, 2))});
   return fn;
 }
 
 /// Flexible joint of a planar model: stiffness in the global axes (x, y in the plane, z out of it).
-std::shared_ptr<const FlexibleJointLaw> read_flexible_law(const h5::Reader& f, const std::string& g) {
+std::shared_ptr<const FlexibleJointLaw> flexible_law(const formats::Model& in, const formats::Joint& joint,
+                                                     const std::string& g) {
   auto law = std::make_shared<FlexibleJointLaw>();
-  if (!f.exists(g + "/stiffness_matrix")) f.fail(g, "a flexible joint needs /stiffness_matrix");
-  law->stiffness = read_6x6(f, g + "/stiffness_matrix");
-  const std::string measure = f.has_attr(g, "deformation_measure") ? f.attr_string(g, "deformation_measure") : "proposed";
-  law->measure = measure == "typical" ? FlexibleMeasure::typical : FlexibleMeasure::proposed;
-  // Model 2.0 had constant coefficients that no tool read; refuse them rather than ignore them.
-  if ((f.has_attr(g, "measure_lambda") && f.attr_f64(g, "measure_lambda") != 0.0) ||
-      (f.has_attr(g, "measure_mu") && f.attr_f64(g, "measure_mu") != 1.0))
-    f.fail(g, "constant measure_lambda/measure_mu (model 2.0) are not supported; give measure_functions (model 2.1)");
-  const std::string name = f.has_attr(g, "measure_functions") ? f.attr_string(g, "measure_functions") : "default";
+  law->stiffness = joint.stiffness_matrix;
+  law->measure = joint.deformation_measure == "typical" ? FlexibleMeasure::typical : FlexibleMeasure::proposed;
   try {
-    if (name == "custom") {
+    if (joint.measure_functions == "custom") {
       law->functions.name = "custom";
-      law->functions.lambda = read_terms(f, g + "/lambda_terms");
-      law->functions.mu = read_terms(f, g + "/mu_terms");
+      law->functions.lambda = measure_terms(joint.lambda_terms);
+      law->functions.mu = measure_terms(joint.mu_terms);
     } else {
-      law->functions = seed_measure_functions(name);
+      law->functions = seed_measure_functions(joint.measure_functions);
     }
     if (law->measure == FlexibleMeasure::proposed) check_measure_functions(law->functions);
   } catch (const std::invalid_argument& e) {
-    f.fail(g, e.what());
+    in.fail(g, e.what());
   }
   return law;
+}
+
+// One flap's beam: each two-node element of the model becomes a quadratic element with a
+// mid-node; node frames from the reference line's tangent.
+void add_flap(FileModel& fm, const formats::Model& in, const formats::Flap& flap) {
+  Model& m = fm.model;
+  const std::string g = "/flaps/" + flap.name;
+  fm.flap_names.push_back(flap.name);
+  const auto& curve = flap.reference_curve;
+  Section sec;
+  sec.stiffness = flap.section.stiffness;
+  sec.mass_per_length = flap.section.mass(0, 0);
+  sec.inertia_per_length = flap.section.mass.block<3, 3>(3, 3);
+  const int section = static_cast<int>(m.sections.size());
+  m.sections.push_back(sec);
+  std::vector<int>& nodes = fm.flap_nodes[flap.name];
+  auto add_node = [&](const Eigen::Vector2d& p, const Eigen::Vector2d& t) {
+    Node n;
+    n.position = Eigen::Vector3d(p.x(), p.y(), 0.0);
+    const Eigen::Vector3d e1 = Eigen::Vector3d(t.x(), t.y(), 0.0).normalized();
+    n.frame.col(0) = e1;
+    n.frame.col(1) = Eigen::Vector3d::UnitZ().cross(e1);
+    n.frame.col(2) = Eigen::Vector3d::UnitZ();
+    nodes.push_back(static_cast<int>(m.nodes.size()));
+    m.nodes.push_back(n);
+  };
+  const std::size_t nr = curve.size();
+  for (std::size_t i = 0; i < nr; ++i) {
+    const Eigen::Vector2d& p = curve[i];
+    // Node tangent: average of the adjacent segment directions (the exact arc tangent is not
+    // known from the polyline).
+    Eigen::Vector2d t = Eigen::Vector2d::Zero();
+    if (i > 0) t += (curve[i] - curve[i - 1]).normalized();
+    if (i + 1 < nr) t += (curve[i + 1] - curve[i]).normalized();
+    if (t.norm() < 1e-12) in.fail(g + "/reference_curve", "repeated or reversing points at row " + std::to_string(i));
+    if (i > 0) add_node(0.5 * (curve[i - 1] + p), p - curve[i - 1]);
+    add_node(p, t);
+  }
+  for (std::size_t e = 0; e + 1 < nr; ++e) {
+    Element el;
+    el.nodes = {nodes[2 * e], nodes[2 * e + 1], nodes[2 * e + 2]};
+    el.section = section;
+    fm.flap_elements[flap.name].push_back(static_cast<int>(m.elements.size()));
+    m.elements.push_back(el);
+  }
+}
+
+// A support: a joint to ground at a flap end.
+JointSpec support_joint(const FileModel& fm, const formats::Model& in, const formats::Support& support) {
+  const std::string g = "/supports/" + support.name;
+  JointSpec j;
+  j.name = support.name;
+  j.node_b = end_node(fm, in, support.flap, support.end, g);
+  j.node_a = -1;
+  if (support.kind == "clamp") {
+    j.kind = JointKind::clamp;
+  } else if (support.kind == "pinned") {
+    j.kind = JointKind::revolute;
+  } else if (support.slides()) {
+    // A clamp or a hinge whose end slides along the axis (model 2.4): the ground prismatic pair
+    // or the pin in a slot.
+    j.kind = support.kind == "sliding_clamp" ? JointKind::prismatic : JointKind::pin_in_slot;
+    j.axis = Eigen::Vector3d(support.axis.x(), support.axis.y(), 0.0);
+  } else {
+    in.fail(g, "support kind '" + support.kind + "' is not supported by this tfmb-beam version");
+  }
+  return j;
+}
+
+// A joint between two flap ends.
+JointSpec flap_joint(const FileModel& fm, const formats::Model& in, const formats::Joint& joint) {
+  const Model& m = fm.model;
+  const std::string g = "/joints/" + joint.name;
+  JointSpec j;
+  j.name = joint.name;
+  j.node_a = end_node(fm, in, joint.flap_a, joint.end_a, g);
+  j.node_b = end_node(fm, in, joint.flap_b, joint.end_b, g);
+  if (joint.kind == "rigid") {
+    j.kind = JointKind::rigid;
+  } else if (joint.kind == "revolute" || joint.kind == "revolute_spring") {
+    j.kind = JointKind::revolute;
+    j.spring_stiffness = joint.stiffness;
+    j.damping = joint.damping;
+  } else if (joint.kind == "prescribed_rotation") {
+    j.kind = JointKind::revolute;
+    j.prescribed = true;
+    for (Eigen::Index r = 0; r < joint.rotation_table.rows(); ++r)
+      j.prescribed_table.push_back({joint.rotation_table(r, 0), joint.rotation_table(r, 1)});
+  } else if (joint.kind == "revolute_clearance") {
+    j.kind = JointKind::clearance;
+    j.pin_radius = joint.inner_radius;
+    j.hole_radius = joint.outer_radius;
+    j.contact_stiffness = joint.contact_stiffness;
+    j.friction_coefficient = joint.friction;
+  } else if (joint.kind == "prismatic") {
+    j.kind = JointKind::prismatic;
+    j.axis = Eigen::Vector3d(joint.axis.x(), joint.axis.y(), 0.0);
+  } else if (joint.kind == "flexible") {
+    j.kind = JointKind::flexible;
+    j.flexible_law = flexible_law(in, joint, g);
+  } else {
+    in.fail(g, "joint kind '" + joint.kind + "' is not supported by this tfmb-beam version");
+  }
+  // Coincident flap ends are required by the hinge joints.
+  if (j.kind != JointKind::rigid &&
+      (m.nodes[j.node_a].position - m.nodes[j.node_b].position).norm() > 1e-9 * (1.0 + m.nodes[j.node_a].position.norm()))
+    in.fail(g, "the flap ends it joins are not at the same point");
+  return j;
 }
 
 }  // namespace
@@ -77,138 +171,20 @@ std::shared_ptr<const FlexibleJointLaw> read_flexible_law(const h5::Reader& f, c
 FileModel read_model(const Options& options) {
   FileModel fm;
   Model& m = fm.model;
-  const h5::Reader f = formats::open_checked(options.model, "model");
-  const formats::Header header = formats::read_header(f);
-  if (header.geometry != "planar")
-    f.fail("/", "geometry '" + header.geometry + "': tfmb-beam supports planar models only");
-  std::vector<std::pair<std::int64_t, std::string>> order;
-  for (const auto& name : f.children("/flaps")) order.push_back({f.attr_i64("/flaps/" + name, "order"), name});
-  std::sort(order.begin(), order.end());
-  for (const auto& [o, name] : order) {
-    (void)o;
-    const std::string g = "/flaps/" + name;
-    fm.flap_names.push_back(name);
-    const h5::MatrixXdR curve = f.read_matrix(g + "/reference_curve", {}, 2);
-    if (curve.rows() < 2) f.fail(g + "/reference_curve", "needs at least 2 points");
-    Section sec;
-    sec.stiffness = read_6x6(f, g + "/section_stiffness");
-    const Eigen::Matrix<double, 6, 6> mass = read_6x6(f, g + "/section_mass");
-    sec.mass_per_length = mass(0, 0);
-    sec.inertia_per_length = mass.block<3, 3>(3, 3);
-    for (int i = 0; i < 6; ++i)
-      if (!(sec.stiffness(i, i) > 0.0)) f.fail(g + "/section_stiffness", "diagonal entry " + std::to_string(i) + " must be > 0");
-    const int section = static_cast<int>(m.sections.size());
-    m.sections.push_back(sec);
-    // Each two-node element of the model becomes one quadratic element with a mid-node.
-    std::vector<int>& nodes = fm.flap_nodes[name];
-    auto add_node = [&](const Eigen::Vector2d& p, const Eigen::Vector2d& t) {
-      Node n;
-      n.position = Eigen::Vector3d(p.x(), p.y(), 0.0);
-      const Eigen::Vector3d e1 = Eigen::Vector3d(t.x(), t.y(), 0.0).normalized();
-      n.frame.col(0) = e1;
-      n.frame.col(1) = Eigen::Vector3d::UnitZ().cross(e1);
-      n.frame.col(2) = Eigen::Vector3d::UnitZ();
-      nodes.push_back(static_cast<int>(m.nodes.size()));
-      m.nodes.push_back(n);
-    };
-    const Eigen::Index nr = curve.rows();
-    for (Eigen::Index i = 0; i < nr; ++i) {
-      const Eigen::Vector2d p = curve.row(i).transpose();
-      // Node tangent: average of the adjacent segment directions (the exact arc tangent is not
-      // known from the polyline).
-      Eigen::Vector2d t = Eigen::Vector2d::Zero();
-      if (i > 0) t += (curve.row(i) - curve.row(i - 1)).transpose().normalized();
-      if (i + 1 < nr) t += (curve.row(i + 1) - curve.row(i)).transpose().normalized();
-      if (t.norm() < 1e-12) f.fail(g + "/reference_curve", "repeated or reversing points at row " + std::to_string(i));
-      if (i > 0) {
-        const Eigen::Vector2d a = curve.row(i - 1).transpose();
-        add_node(0.5 * (a + p), p - a);
-      }
-      add_node(p, t);
-    }
-    for (Eigen::Index e = 0; e + 1 < nr; ++e) {
-      Element el;
-      el.nodes = {nodes[2 * e], nodes[2 * e + 1], nodes[2 * e + 2]};
-      el.section = section;
-      fm.flap_elements[name].push_back(static_cast<int>(m.elements.size()));
-      m.elements.push_back(el);
-    }
+  const formats::Model in = formats::read_model(options.model);
+  if (in.geometry != "planar")
+    in.fail("/", "geometry '" + in.geometry + "': tfmb-beam supports planar models only");
+  fm.analysis = in.analysis;
+  for (const formats::Flap& flap : in.flaps) add_flap(fm, in, flap);
+  // Supports and joints, each in the file's (name) order.
+  for (const formats::Support& support : in.supports) {
+    m.joints.push_back(support_joint(fm, in, support));
+    fm.joint_names.push_back(support.name);
   }
-  // Supports and joints.
-  if (f.exists("/supports"))
-    for (const auto& name : f.children("/supports")) {
-      const std::string g = "/supports/" + name;
-      JointSpec j;
-      j.name = name;
-      j.node_b = end_node(fm, f, f.attr_string(g, "flap"), f.attr_string(g, "end"), g);
-      const std::string kind = f.attr_string(g, "kind");
-      j.node_a = -1;
-      if (kind == "clamp") {
-        j.kind = JointKind::clamp;
-      } else if (kind == "pinned") {
-        j.kind = JointKind::revolute;
-      } else if (kind == "sliding_clamp" || kind == "sliding_pinned") {
-        // A clamp or a hinge whose end slides along /axis (model 2.4): the ground prismatic pair
-        // or the pin in a slot.
-        j.kind = kind == "sliding_clamp" ? JointKind::prismatic : JointKind::pin_in_slot;
-        if (!f.exists(g + "/axis"))
-          f.fail(g, "a " + kind + " support needs /axis");
-        const auto a = f.read_vector(g + "/axis", 2);
-        j.axis = Eigen::Vector3d(a[0], a[1], 0.0);
-        if (!(j.axis.norm() > 1e-12))
-          f.fail(g + "/axis", "zero sliding direction");
-      } else {
-        f.fail(g, "support kind '" + kind + "' is not supported by this tfmb-beam version");
-      }
-      m.joints.push_back(j);
-      fm.joint_names.push_back(name);
-    }
-  if (f.exists("/joints"))
-    for (const auto& name : f.children("/joints")) {
-      const std::string g = "/joints/" + name;
-      const std::string kind = f.attr_string(g, "kind");
-      JointSpec j;
-      j.name = name;
-      j.node_a = end_node(fm, f, f.attr_string(g, "flap_a"), f.attr_string(g, "end_a"), g);
-      j.node_b = end_node(fm, f, f.attr_string(g, "flap_b"), f.attr_string(g, "end_b"), g);
-      auto opt = [&](const char* a) { return f.has_attr(g, a) ? f.attr_f64(g, a) : 0.0; };
-      if (kind == "rigid") {
-        j.kind = JointKind::rigid;
-      } else if (kind == "revolute" || kind == "revolute_spring") {
-        j.kind = JointKind::revolute;
-        j.spring_stiffness = opt("stiffness");
-        j.damping = opt("damping");
-      } else if (kind == "prescribed_rotation") {
-        j.kind = JointKind::revolute;
-        j.prescribed = true;
-        if (!f.exists(g + "/rotation_table")) f.fail(g, "prescribed_rotation needs /rotation_table");
-        const h5::MatrixXdR t = f.read_matrix(g + "/rotation_table", {}, 2);
-        for (Eigen::Index r = 0; r < t.rows(); ++r) j.prescribed_table.push_back({t(r, 0), t(r, 1)});
-      } else if (kind == "revolute_clearance") {
-        j.kind = JointKind::clearance;
-        j.pin_radius = opt("inner_radius");
-        j.hole_radius = opt("outer_radius");
-        j.contact_stiffness = opt("contact_stiffness");
-        j.friction_coefficient = opt("friction");
-      } else if (kind == "prismatic") {
-        j.kind = JointKind::prismatic;
-        if (!f.exists(g + "/axis")) f.fail(g, "a prismatic joint needs /axis");
-        const auto a = f.read_vector(g + "/axis", 2);
-        j.axis = Eigen::Vector3d(a[0], a[1], 0.0);
-        if (!(j.axis.norm() > 1e-12)) f.fail(g + "/axis", "zero sliding direction");
-      } else if (kind == "flexible") {
-        j.kind = JointKind::flexible;
-        j.flexible_law = read_flexible_law(f, g);
-      } else {
-        f.fail(g, "joint kind '" + kind + "' is not supported by this tfmb-beam version");
-      }
-      // Coincident flap ends are required by the hinge joints.
-      if (j.kind != JointKind::rigid &&
-          (m.nodes[j.node_a].position - m.nodes[j.node_b].position).norm() > 1e-9 * (1.0 + m.nodes[j.node_a].position.norm()))
-        f.fail(g, "the flap ends it joins are not at the same point");
-      m.joints.push_back(j);
-      fm.joint_names.push_back(name);
-    }
+  for (const formats::Joint& joint : in.joints) {
+    m.joints.push_back(flap_joint(fm, in, joint));
+    fm.joint_names.push_back(joint.name);
+  }
   add_planar_constraints(m);
   fm.joint_names.resize(m.joints.size());
 
@@ -515,8 +491,7 @@ void continue_from(const std::filesystem::path& file, const FileModel& fm, const
 int run(const Options& options, const Logger& log) {
   const auto t0 = std::chrono::steady_clock::now();
   FileModel fm = read_model(options);
-  const h5::Reader mf = formats::open_checked(options.model, "model");
-  std::string analysis = options.analysis.empty() ? mf.attr_string("/analysis", "time") : options.analysis;
+  std::string analysis = options.analysis.empty() ? fm.analysis.time : options.analysis;
   if (analysis != "static" && analysis != "dynamic" && analysis != "modal")
     throw UsageError("--analysis must be static, dynamic or modal, got '" + analysis + "'");
   std::unique_ptr<Assembly> asmb;
@@ -533,7 +508,7 @@ int run(const Options& options, const Logger& log) {
     if (analysis == "static") {
       StaticOptions so;
       so.initial_steps = options.load_steps > 0 ? options.load_steps
-                                                : static_cast<int>(mf.attr_i64("/analysis", "load_steps"));
+                                                : fm.analysis.load_steps;
       StaticResult r;
       if (options.arc_length) {
         ArcLengthOptions ao;
@@ -552,8 +527,8 @@ int run(const Options& options, const Logger& log) {
                            " after cut-backs; the last converged state was written to " + options.output.string());
     } else if (analysis == "dynamic") {
       DynamicOptions dopt;
-      dopt.end_time = options.end_time > 0 ? options.end_time : mf.attr_f64("/analysis", "end_time");
-      dopt.time_step = options.time_step > 0 ? options.time_step : mf.attr_f64("/analysis", "time_step");
+      dopt.end_time = options.end_time > 0 ? options.end_time : fm.analysis.end_time;
+      dopt.time_step = options.time_step > 0 ? options.time_step : fm.analysis.time_step;
       dopt.rho_infinity = options.rho_infinity;
       dopt.on_step = [&](double t, const State& s) {
         times.push_back(t);

@@ -4,6 +4,7 @@
 #include "tfmb/common/h5.hpp"
 #include "tfmb/common/log.hpp"
 #include "tfmb/formats/files.hpp"
+#include "tfmb/formats/model.hpp"
 #include "tfmb/formats/schema.hpp"
 #include "tfmb/heat/beam_outputs.hpp"
 #include "tfmb/heat/boundary_geometry.hpp"
@@ -121,9 +122,9 @@ int run(const Options& options, const Logger& log) {
   const auto z_values = solid_file.read_vector("/link/point_thickness_coordinate", mesh.node_count());
   const Eigen::VectorXd node_z = Eigen::Map<const Eigen::VectorXd>(z_values.data(), static_cast<Eigen::Index>(z_values.size()));
 
-  const auto model = formats::open_checked(options.model, "model");
-  const std::string solid_boundary = model.attr_string("/thermal", "solid_boundary");
-  const double emissivity = model.attr_f64("/thermal", "emissivity");
+  const formats::Model model = formats::read_model(options.model);
+  const std::string solid_boundary = model.thermal.solid_boundary;
+  const double emissivity = model.thermal.emissivity;
 
   const auto db = formats::open_checked(options.material_db, "material-db");
   ThermalProblem problem;
@@ -133,11 +134,12 @@ int run(const Options& options, const Logger& log) {
   std::vector<std::int64_t> flap_elements(flap_names.size());
   for (std::size_t f = 0; f < flap_names.size(); ++f) {
     const std::string flap_group = "/flaps/" + flap_names[f];
-    if (!model.exists(flap_group)) {
+    const formats::Flap* model_flap = model.find_flap(flap_names[f]);
+    if (!model_flap) {
       model.fail(flap_group, "missing: the solid mesh has flap '" + flap_names[f] + "' but the model does not");
     }
-    const std::string named = model.attr_string(flap_group, "material");
-    flap_elements[f] = model.attr_i64(flap_group, "elements");
+    const std::string named = model_flap->material;
+    flap_elements[f] = model_flap->elements;
     const std::string material = resolve_material(db, named);
     if (material.empty()) {
       db.fail("/materials", "no material or alias '" + named + "' (flap '" + flap_names[f] + "' of " +
@@ -232,7 +234,7 @@ int run(const Options& options, const Logger& log) {
       problem.boundary_conditions.push_back({name, Radiation{emissivity, options.environment_temperature}});
     }
   }
-  if (options.joint_conductance > 0.0 && model.exists("/joints")) {
+  if (options.joint_conductance > 0.0) {
     // Each joint couples the closest pair of end walls of its two flaps.
     auto centroid = [&](const std::string& name) {
       const auto& curve = mesh.boundaries.at(name);
@@ -240,9 +242,10 @@ int run(const Options& options, const Logger& log) {
       for (auto node : curve.nodes) c += mesh.points.row(node).transpose();
       return Eigen::Vector2d(c / static_cast<double>(curve.nodes.size()));
     };
-    for (const auto& joint : model.children("/joints")) {
-      const std::string group = "/joints/" + joint;
-      const auto flap_a = model.attr_string(group, "flap_a"), flap_b = model.attr_string(group, "flap_b");
+    for (const formats::Joint& model_joint : model.joints) {
+      const std::string& joint = model_joint.name;
+      const std::string& flap_a = model_joint.flap_a;
+      const std::string& flap_b = model_joint.flap_b;
       double best = std::numeric_limits<double>::infinity();
       std::string end_a, end_b;
       for (const auto& [name_a, a] : solid_in.boundaries) {

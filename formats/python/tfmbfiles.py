@@ -1,0 +1,148 @@
+"""tfmbfiles: open and read tfmb files (formats/*.md) from the Python scripts, checks in one place.
+
+    f = open_kind(path, "walldisp")              # h5py.File, identity and major version checked
+    d = dataset(f, "walls/upper/displacement", shape=(None, 2))   # float64, finite, (n,2)
+    p = attr(f, "conditions", "ambient_pressure")                 # float, finite
+    names = sorted(group(f, "walls"))
+
+Every problem raises BadInput, whose message is one line naming the file and the object in it,
+"FILE: /object: what is wrong" ("FILE: what is wrong" when the file itself cannot be opened), as
+the C++ readers word them; the scripts print it after their name and exit 3 (bad input).
+"""
+import os
+
+import numpy as np
+
+# Major format_version each kind's reader understands (formats/<kind>.md, first line). A table
+# rather than parsing the specs at import time: the copy installed next to tfmb-plot has no
+# formats/ directory to parse, so the table would be needed anyway, and one source cannot
+# disagree with another. tests/workflows/test_tfmbfiles.py checks it against the spec headers.
+MAJORS = {"model": 2, "flowmesh": 1, "solidmesh": 1, "flow": 1, "thermal": 1, "material-db": 1,
+          "materials": 1, "loads": 1, "walldisp": 1, "structure": 1, "strain": 1}
+
+_REQUIRED = object()
+
+
+class BadInput(Exception):
+    """A bad input file; str() is one located line."""
+
+    @classmethod
+    def at(cls, f, key, what):
+        """BadInput for object `key` of file `f` (an h5py.File or a path)."""
+        return cls(f"{getattr(f, 'filename', f)}: /{key.strip('/')}: {what}")
+
+
+def text(value):
+    """An attribute's value as str: h5py gives bytes for fixed-length strings, str otherwise."""
+    if isinstance(value, np.ndarray) and value.shape == ():
+        value = value[()]
+    return value.decode() if isinstance(value, bytes) else str(value)
+
+
+def open_kind(path, kinds):
+    """Opens `path` for reading after checking it is an HDF5 file whose root @format is
+    tfmb/<kind> for one of `kinds` (a name or a list) with the major @format_version this module
+    reads (minor versions only add optional content). Use as a context manager."""
+    import h5py  # here, so that --help and usage errors do not wait for h5py
+    kinds = [kinds] if isinstance(kinds, str) else list(kinds)
+    if not os.path.isfile(path):
+        raise BadInput(f"{path}: no such file")
+    try:
+        f = h5py.File(path, "r")
+    except OSError:
+        raise BadInput(f"{path}: not an HDF5 file") from None
+    try:
+        expected = " or ".join(f"'tfmb/{k}'" for k in kinds)
+        if "format" not in f.attrs:
+            raise BadInput.at(path, "/", f"missing attribute 'format' (expected {expected}): "
+                              "not a tfmb file?")
+        fmt = text(f.attrs["format"])
+        kind = fmt[5:] if fmt.startswith("tfmb/") else None
+        if kind not in kinds:
+            raise BadInput.at(path, "/", f"attribute 'format' is '{fmt}', expected {expected}")
+        if "format_version" not in f.attrs:
+            raise BadInput.at(path, "/", "missing attribute 'format_version'")
+        version = text(f.attrs["format_version"])
+        major, dot, minor = version.partition(".")
+        if not (dot and major.isdigit() and minor.isdigit()):
+            raise BadInput.at(path, "/", f"attribute 'format_version' is '{version}', "
+                              "expected 'major.minor'")
+        if int(major) != MAJORS[kind]:
+            raise BadInput.at(path, "/", f"unknown major format_version {version} (this build "
+                              f"reads {MAJORS[kind]}.x); convert the file or update tfmb")
+    except BaseException:
+        f.close()
+        raise
+    return f
+
+
+def group(f, key):
+    """The group `key` of `f`, refusing a missing one."""
+    import h5py
+    if key.strip("/") and key not in f:
+        raise BadInput.at(f, key, "missing group")
+    g = f[key]
+    if not isinstance(g, h5py.Group):
+        raise BadInput.at(f, key, "is a dataset, expected a group")
+    return g
+
+
+def _shape_text(shape):
+    """(5,3) -> '(5,3)', (None,2) -> '(n,2)', (7,) -> '(7,)': the C++ readers' spelling."""
+    parts = ["n" if n is None else str(n) for n in shape]
+    return "(" + ",".join(parts) + ("," if len(parts) == 1 else "") + ")"
+
+
+def dataset(f, key, dtype=float, shape=None):
+    """Dataset `key` of `f` as a numpy array of `dtype` (float: float64, int: int64), refusing a
+    missing dataset, a dtype that does not convert without loss, a shape other than `shape`
+    (a tuple; None matches any extent) and, for floats, NaN or infinity."""
+    import h5py
+    if key not in f:
+        raise BadInput.at(f, key, "missing dataset")
+    d = f[key]
+    if not isinstance(d, h5py.Dataset):
+        raise BadInput.at(f, key, "is a group, expected a dataset")
+    want = np.dtype(np.float64 if dtype is float else np.int64 if dtype is int else dtype)
+    allowed = "iu" if want.kind in "iu" else "fiu" if want.kind == "f" else want.kind
+    if d.dtype.kind not in allowed:
+        raise BadInput.at(f, key, f"wrong dtype {d.dtype}, expected {want}")
+    if shape is not None and (len(d.shape) != len(shape) or
+                              any(n is not None and n != m for n, m in zip(shape, d.shape))):
+        raise BadInput.at(f, key, f"wrong shape {_shape_text(d.shape)}, expected "
+                          f"{_shape_text(shape)}")
+    values = np.asarray(d[()], dtype=want)
+    if want.kind == "f" and not np.all(np.isfinite(values)):
+        i = int(np.flatnonzero(~np.isfinite(values))[0])
+        where = f" (row {i // values.shape[1]}, column {i % values.shape[1]})" \
+            if values.ndim == 2 and values.shape[1] else ""
+        raise BadInput.at(f, key, f"non-finite value {values.flat[i]} at flat index {i}{where}")
+    return values
+
+
+def attr(f, key, name, type=float, default=_REQUIRED):
+    """Attribute `name` of object `key` ("/" for the root) as `type`: float (finite), int, bool
+    (stored as an integer 0/1) or str. A missing attribute is refused unless `default` is given,
+    which is then returned as it is."""
+    if key.strip("/") and key not in f:
+        raise BadInput.at(f, key, "missing group")
+    attrs = f[key].attrs
+    if name not in attrs:
+        if default is _REQUIRED:
+            raise BadInput.at(f, key, f"missing attribute '{name}'")
+        return default
+    value = attrs[name]
+    if type is str:
+        return text(value)
+    if np.ndim(value) != 0:
+        raise BadInput.at(f, key, f"attribute '{name}' is not a scalar")
+    value = value[()] if isinstance(value, np.ndarray) else value
+    if isinstance(value, (bytes, str)) or not np.isreal(value):
+        raise BadInput.at(f, key, f"attribute '{name}' is '{text(value)}', expected a number")
+    if type is float:
+        if not np.isfinite(value):
+            raise BadInput.at(f, key, f"attribute '{name}' is not finite ({value})")
+        return float(value)
+    if not np.isfinite(value) or value != int(value):
+        raise BadInput.at(f, key, f"attribute '{name}' is {value}, expected an integer")
+    return bool(int(value)) if type is bool else type(int(value))
