@@ -342,7 +342,8 @@ Model read_model(const std::filesystem::path& file) {
             [](const auto& a, const auto& b) { return a.first < b.first; });
   for (auto& [order, f] : flaps)
     model.flaps.push_back(std::move(f));
-  for (const auto& name : r.is_group("/joints") ? r.children("/joints") : std::vector<std::string>{}) {
+  for (const auto& name :
+       r.is_group("/joints") ? r.children("/joints") : std::vector<std::string>{}) {
     const std::string g = "/joints/" + name;
     Joint j;
     j.name = name;
@@ -388,7 +389,8 @@ Model read_model(const std::filesystem::path& file) {
     }
     model.joints.push_back(j);
   }
-  for (const auto& name : r.is_group("/supports") ? r.children("/supports") : std::vector<std::string>{}) {
+  for (const auto& name :
+       r.is_group("/supports") ? r.children("/supports") : std::vector<std::string>{}) {
     const std::string g = "/supports/" + name;
     Support s;
     s.name = name;

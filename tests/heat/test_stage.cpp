@@ -222,10 +222,12 @@ void write_model(const Case& c) {
     formats::DatasetValue& curve = doc.datasets["/flaps/f0/reference_curve"];
     curve.shape = {static_cast<std::size_t>(kElements) + 1, 2};
     curve.floats.clear();
-    for (int i = 0; i <= kElements; ++i) curve.floats.insert(curve.floats.end(), {kLength * i / kElements, 0.0});
+    for (int i = 0; i <= kElements; ++i)
+      curve.floats.insert(curve.floats.end(), {kLength * i / kElements, 0.0});
   }
   std::vector<std::string> unused = {"/supports/", "/domain/boundaries/"};
-  if (!c.two_flaps) unused.push_back("/joints/");  // the two-flap case re-points the joint below
+  if (!c.two_flaps)
+    unused.push_back("/joints/");  // the two-flap case re-points the joint below
   for (const std::string& prefix : unused) {
     std::erase_if(doc.groups, [&](const std::string& g) { return g.rfind(prefix, 0) == 0; });
     std::erase_if(doc.datasets, [&](const auto& kv) { return kv.first.rfind(prefix, 0) == 0; });

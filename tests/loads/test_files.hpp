@@ -171,7 +171,8 @@ inline void write_model(const std::filesystem::path& file, const std::vector<Tes
   // The example's joint, support and domain pieces name its flap 'sample': the stages these
   // files feed (loads, matmap, strain) read flaps only, and the model reader refuses references to
   // a flap the file does not have.
-  for (const char* parent : {"/joints", "/supports", "/domain/boundaries"}) erase_below(doc, parent);
+  for (const char* parent : {"/joints", "/supports", "/domain/boundaries"})
+    erase_below(doc, parent);
   for (const auto& f : flaps) {
     const std::string g = "/flaps/" + f.name;
     set_points(doc, g + "/reference_curve", f.reference_curve);

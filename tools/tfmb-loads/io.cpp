@@ -51,7 +51,8 @@ Model read_model(const std::filesystem::path& file) {
     flap.outer_wall = f.outer_wall;
     model.flaps.push_back(std::move(flap));
   }
-  if (model.flaps.empty()) in.fail("/flaps", "no flaps: nothing to load");
+  if (model.flaps.empty())
+    in.fail("/flaps", "no flaps: nothing to load");
   std::sort(model.flaps.begin(), model.flaps.end(),
             [](const ModelFlap& a, const ModelFlap& b) { return a.name < b.name; });
   return model;

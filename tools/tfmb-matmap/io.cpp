@@ -68,17 +68,20 @@ Model read_model(const std::filesystem::path& file) {
     const Eigen::Vector2d normal(-(b - a).y(), (b - a).x());
     std::size_t nearest = 0;
     for (std::size_t i = 1; i < f.outer_wall.size(); ++i) {
-      if ((f.outer_wall[i] - middle).norm() < (f.outer_wall[nearest] - middle).norm()) nearest = i;
+      if ((f.outer_wall[i] - middle).norm() < (f.outer_wall[nearest] - middle).norm())
+        nearest = i;
     }
     const double side = normal.dot(f.outer_wall[nearest] - middle);
-    if (side == 0.0) in.fail(g + "/outer_wall", "lies on the reference curve: cannot tell the outer side");
+    if (side == 0.0)
+      in.fail(g + "/outer_wall", "lies on the reference curve: cannot tell the outer side");
     flap.outer_normal_sign = side > 0.0 ? 1 : -1;
     model.flaps.push_back(flap);
   }
   // The stage's outputs list flaps by name, as the file's groups are.
   std::sort(model.flaps.begin(), model.flaps.end(),
             [](const ModelFlap& a, const ModelFlap& b) { return a.name < b.name; });
-  if (in.thermal.reference_temperature > 0.0) model.stress_free_temperature = in.thermal.reference_temperature;
+  if (in.thermal.reference_temperature > 0.0)
+    model.stress_free_temperature = in.thermal.reference_temperature;
   return model;
 }
 

@@ -22,10 +22,11 @@
 namespace tfmb::beam {
 namespace {
 
-int end_node(const FileModel& fm, const formats::Model& in, const std::string& flap, const std::string& end,
-             const std::string& where) {
+int end_node(const FileModel& fm, const formats::Model& in, const std::string& flap,
+             const std::string& end, const std::string& where) {
   const auto it = fm.flap_nodes.find(flap);
-  if (it == fm.flap_nodes.end()) in.fail(where, "refers to flap '" + flap + "', which is not in /flaps");
+  if (it == fm.flap_nodes.end())
+    in.fail(where, "refers to flap '" + flap + "', which is not in /flaps");
   return end == "start" ? it->second.front() : it->second.back();
 }
 
@@ -38,11 +39,13 @@ MeasureFunction measure_terms(const Eigen::MatrixX3d& rows) {
 }
 
 /// Flexible joint of a planar model: stiffness in the global axes (x, y in the plane, z out of it).
-std::shared_ptr<const FlexibleJointLaw> flexible_law(const formats::Model& in, const formats::Joint& joint,
+std::shared_ptr<const FlexibleJointLaw> flexible_law(const formats::Model& in,
+                                                     const formats::Joint& joint,
                                                      const std::string& g) {
   auto law = std::make_shared<FlexibleJointLaw>();
   law->stiffness = joint.stiffness_matrix;
-  law->measure = joint.deformation_measure == "typical" ? FlexibleMeasure::typical : FlexibleMeasure::proposed;
+  law->measure =
+      joint.deformation_measure == "typical" ? FlexibleMeasure::typical : FlexibleMeasure::proposed;
   try {
     if (joint.measure_functions == "custom") {
       law->functions.name = "custom";
@@ -88,10 +91,14 @@ void add_flap(FileModel& fm, const formats::Model& in, const formats::Flap& flap
     // Node tangent: average of the adjacent segment directions (the exact arc tangent is not
     // known from the polyline).
     Eigen::Vector2d t = Eigen::Vector2d::Zero();
-    if (i > 0) t += (curve[i] - curve[i - 1]).normalized();
-    if (i + 1 < nr) t += (curve[i + 1] - curve[i]).normalized();
-    if (t.norm() < 1e-12) in.fail(g + "/reference_curve", "repeated or reversing points at row " + std::to_string(i));
-    if (i > 0) add_node(0.5 * (curve[i - 1] + p), p - curve[i - 1]);
+    if (i > 0)
+      t += (curve[i] - curve[i - 1]).normalized();
+    if (i + 1 < nr)
+      t += (curve[i + 1] - curve[i]).normalized();
+    if (t.norm() < 1e-12)
+      in.fail(g + "/reference_curve", "repeated or reversing points at row " + std::to_string(i));
+    if (i > 0)
+      add_node(0.5 * (curve[i - 1] + p), p - curve[i - 1]);
     add_node(p, t);
   }
   for (std::size_t e = 0; e + 1 < nr; ++e) {
@@ -104,7 +111,8 @@ void add_flap(FileModel& fm, const formats::Model& in, const formats::Flap& flap
 }
 
 // A support: a joint to ground at a flap end.
-JointSpec support_joint(const FileModel& fm, const formats::Model& in, const formats::Support& support) {
+JointSpec support_joint(const FileModel& fm, const formats::Model& in,
+                        const formats::Support& support) {
   const std::string g = "/supports/" + support.name;
   JointSpec j;
   j.name = support.name;
@@ -161,7 +169,8 @@ JointSpec flap_joint(const FileModel& fm, const formats::Model& in, const format
   }
   // Coincident flap ends are required by the hinge joints.
   if (j.kind != JointKind::rigid &&
-      (m.nodes[j.node_a].position - m.nodes[j.node_b].position).norm() > 1e-9 * (1.0 + m.nodes[j.node_a].position.norm()))
+      (m.nodes[j.node_a].position - m.nodes[j.node_b].position).norm() >
+          1e-9 * (1.0 + m.nodes[j.node_a].position.norm()))
     in.fail(g, "the flap ends it joins are not at the same point");
   return j;
 }
@@ -175,7 +184,8 @@ FileModel read_model(const Options& options) {
   if (in.geometry != "planar")
     in.fail("/", "geometry '" + in.geometry + "': tfmb-beam supports planar models only");
   fm.analysis = in.analysis;
-  for (const formats::Flap& flap : in.flaps) add_flap(fm, in, flap);
+  for (const formats::Flap& flap : in.flaps)
+    add_flap(fm, in, flap);
   // Supports and joints, each in the file's (name) order.
   for (const formats::Support& support : in.supports) {
     m.joints.push_back(support_joint(fm, in, support));
@@ -507,8 +517,7 @@ int run(const Options& options, const Logger& log) {
   try {
     if (analysis == "static") {
       StaticOptions so;
-      so.initial_steps = options.load_steps > 0 ? options.load_steps
-                                                : fm.analysis.load_steps;
+      so.initial_steps = options.load_steps > 0 ? options.load_steps : fm.analysis.load_steps;
       StaticResult r;
       if (options.arc_length) {
         ArcLengthOptions ao;

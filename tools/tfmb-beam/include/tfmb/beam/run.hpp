@@ -41,7 +41,7 @@ struct FileModel {
   std::map<std::string, std::vector<int>> flap_nodes;     // beam nodes of each flap, in order
   std::map<std::string, std::vector<int>> flap_elements;  // quadratic elements of each flap
   std::vector<std::string> joint_names;                   // per model.joints entry ("" for planar guides)
-  formats::AnalysisSettings analysis;                     // the model's /analysis (defaults of --analysis etc.)
+  formats::AnalysisSettings analysis;  // the model's /analysis (defaults of --analysis etc.)
 };
 
 /// Reads and checks the inputs (throws tfmb::BadInput naming the file and object on errors).
