@@ -93,10 +93,11 @@ def _shape_text(shape):
     return "(" + ",".join(parts) + ("," if len(parts) == 1 else "") + ")"
 
 
-def dataset(f, key, dtype=float, shape=None):
+def dataset(f, key, dtype=float, shape=None, below=None):
     """Dataset `key` of `f` as a numpy array of `dtype` (float: float64, int: int64), refusing a
     missing dataset, a dtype that does not convert without loss, a shape other than `shape`
-    (a tuple; None matches any extent) and, for floats, NaN or infinity."""
+    (a tuple; None matches any extent), for floats NaN or infinity and, with `below`, values
+    outside [0, below) (indices into another dataset)."""
     import h5py
     if key not in f:
         raise BadInput.at(f, key, "missing dataset")
@@ -117,6 +118,9 @@ def dataset(f, key, dtype=float, shape=None):
         where = f" (row {i // values.shape[1]}, column {i % values.shape[1]})" \
             if values.ndim == 2 and values.shape[1] else ""
         raise BadInput.at(f, key, f"non-finite value {values.flat[i]} at flat index {i}{where}")
+    if below is not None and values.size and not (values.min() >= 0 and values.max() < below):
+        i = int(np.flatnonzero((values < 0) | (values >= below))[0])
+        raise BadInput.at(f, key, f"index {values.flat[i]} at flat index {i} out of range [0, {below})")
     return values
 
 
