@@ -11,16 +11,11 @@
 #include "tfmb/common/cli.hpp"
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/geometry.hpp"
+#include "tfmb/common/text.hpp"
 
 namespace tfmb::loads {
 
 namespace {
-
-std::string format_number(double v) {
-  std::ostringstream s;
-  s << std::setprecision(6) << v;
-  return s.str();
-}
 
 BeamLine make_beam(const ModelFlap& flap, const std::filesystem::path& model_file) {
   try {
@@ -95,9 +90,9 @@ void check_coverage(const BeamLine& beam, const ModelFlap& flap, Side side,
       for (const WallTrace* t : traces) names += (names.empty() ? "" : ", ") + t->name;
       throw BadInput(source + ": /walls/{" + names + "}: the " + side_name(side) +
                      " traces of flap '" + flap.name + "' leave beam arc length [" +
-                     format_number(from) + ", " + format_number(to) + "] m of [0, " +
-                     format_number(beam.length()) + "] m uncovered (tolerance " +
-                     format_number(allowed) + " m, --coverage-tolerance)");
+                     text::format_number(from) + ", " + text::format_number(to) + "] m of [0, " +
+                     text::format_number(beam.length()) + "] m uncovered (tolerance " +
+                     text::format_number(allowed) + " m, --coverage-tolerance)");
     }
   }
 }
@@ -174,7 +169,7 @@ ForcesResult run_forces_unchecked(const ForcesOptions& options, const Logger& lo
   }
   result.loads.load_basis =
       "per unit beam length over the flap width (flow traces are per unit depth " +
-      format_number(result.loads.header.depth) + " m and are multiplied by each flap's width)";
+      text::format_number(result.loads.header.depth) + " m and are multiplied by each flap's width)";
 
   // Every trace must belong to a model flap.
   std::map<std::string, const ModelFlap*> by_name;
@@ -200,7 +195,7 @@ ForcesResult run_forces_unchecked(const ForcesOptions& options, const Logger& lo
       }
       const double p = *options.missing_side_pressure;
       logger.warn("flap " + flap.name + ": no " + side_name(side) + " trace; uniform pressure " +
-                  format_number(p) + " Pa on the model's " + side_name(side) + " wall");
+                  text::format_number(p) + " Pa on the model's " + side_name(side) + " wall");
       extra.push_back(model_trace(flap, side, model_wall(flap, side),
                                   [&](const std::string& q, const Vec2&) { return q == "p" ? p : 0.0; }));
     }
@@ -230,8 +225,8 @@ ForcesResult run_forces_unchecked(const ForcesOptions& options, const Logger& lo
         const double distance = (t->points[k] - beam.project(t->points[k]).point).norm();
         if (distance > reach) {
           throw BadInput(source + ": /walls/" + t->name + ": point " + std::to_string(k) + " lies " +
-                         format_number(distance) + " m from the beam of flap '" + flap.name +
-                         "' (more than " + format_number(reach) + " m): is the boundary's flap attribute right?");
+                         text::format_number(distance) + " m from the beam of flap '" + flap.name +
+                         "' (more than " + text::format_number(reach) + " m): is the boundary's flap attribute right?");
         }
       }
     }
@@ -353,8 +348,8 @@ DisplaceResult run_displace_unchecked(const DisplaceOptions& options, const Logg
                                          (points[k] - closest_point(flap.reference_curve, points[k])).norm());
         if (distance > tolerance) {
           throw BadInput(sfile + ": /flaps/" + flap.name + "/nodes: beam node " + std::to_string(k) + " at (" +
-                         format_number(points[k].x()) + ", " + format_number(points[k].y()) + ") m lies " +
-                         format_number(distance) + " m off the reference curve of flap '" + flap.name +
+                         text::format_number(points[k].x()) + ", " + text::format_number(points[k].y()) + ") m lies " +
+                         text::format_number(distance) + " m off the reference curve of flap '" + flap.name +
                          "' in " + options.model_file.string() + " (mismatched model and structure files)");
         }
       }
@@ -427,7 +422,7 @@ DisplaceResult run_displace_unchecked(const DisplaceOptions& options, const Logg
   provenance.command_line = options.command_line;
   provenance.settings = "command = \"displace\"\n" +
                         (use_function ? "function = \"" + options.function + "\"\n" : std::string()) +
-                        "match_tolerance = " + format_number(options.match_tolerance) + "\n";
+                        "match_tolerance = " + text::format_number(options.match_tolerance) + "\n";
   if (!use_function) provenance.inputs.push_back(options.structure_file);
   provenance.inputs.push_back(options.model_file);
   if (!options.mesh_file.empty()) provenance.inputs.push_back(options.mesh_file);

@@ -1,4 +1,5 @@
 #include "material_table.hpp"
+#include "tfmb/common/text.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -7,12 +8,6 @@
 namespace tfmb::matmap {
 
 namespace {
-std::string format(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
 std::string normalise(const std::string& name) {
   std::string out;
   for (char c : name) {
@@ -24,8 +19,8 @@ std::string normalise(const std::string& name) {
 }  // namespace
 
 OutsideTable::OutsideTable(const PropertyTable& table, double t)
-    : std::runtime_error(format(t) + " K is outside the " + table.name + " table [" +
-                         format(table.lowest()) + ", " + format(table.highest()) + "] K"),
+    : std::runtime_error(text::format_number(t) + " K is outside the " + table.name + " table [" +
+                         text::format_number(table.lowest()) + ", " + text::format_number(table.highest()) + "] K"),
       temperature(t),
       lowest(table.lowest()),
       highest(table.highest()),

@@ -9,16 +9,11 @@
 #include "thermal_strain.hpp"
 #include "tfmb/common/cli.hpp"
 #include "tfmb/common/errors.hpp"
+#include "tfmb/common/text.hpp"
 
 namespace tfmb::matmap {
 
 namespace {
-
-std::string number(double v) {
-  std::ostringstream s;
-  s << std::setprecision(6) << v;
-  return s.str();
-}
 
 // Evaluates properties of one element, collecting what had to be clamped.
 struct ElementLookup {
@@ -31,7 +26,7 @@ struct ElementLookup {
     const PropertyTable& table = material.require(property);
     try {
       const Evaluation e = evaluate(table, t, clamp);
-      if (e.clamped) clamped.insert(property + " at " + which + " " + number(t) + " K [" + number(table.lowest()) + ", " + number(table.highest()) + "]");
+      if (e.clamped) clamped.insert(property + " at " + which + " " + text::format_number(t) + " K [" + text::format_number(table.lowest()) + ", " + text::format_number(table.highest()) + "]");
       return e.value;
     } catch (const OutsideTable& e) {
       throw BadInput(location + ": " + which + " " + e.what() + " of " + material.name +
@@ -99,7 +94,7 @@ Result run(const Options& options, const Logger& logger, std::ostream& out) {
                      " (missing: " + material->missing + "); give --poisson-ratio to use G = E / (2 (1 + nu))");
     }
     flap.shear_modulus_basis = has_g && has_nu ? "material database"
-                                               : "G = E / (2 (1 + nu)) with nu = " + number(*options.poisson_ratio) + " (--poisson-ratio)";
+                                               : "G = E / (2 (1 + nu)) with nu = " + text::format_number(*options.poisson_ratio) + " (--poisson-ratio)";
     flap.has_strength = material->find("yield_strength") && material->find("ultimate_strength");
     if (!material->find("allowable_strain") && !options.allowable_strain) {
       throw BadInput(options.database_file.string() + ": /materials/" + material->name +
@@ -107,7 +102,7 @@ Result run(const Options& options, const Logger& logger, std::ostream& out) {
                      "); give --allowable-strain to use a temperature-independent value");
     }
     flap.allowable_strain_basis = options.allowable_strain
-                                      ? "temperature-independent value " + number(*options.allowable_strain) + " (--allowable-strain)"
+                                      ? "temperature-independent value " + text::format_number(*options.allowable_strain) + " (--allowable-strain)"
                                       : "material database: yield_strength / youngs_modulus at the element temperature";
     const RectangleSection section{mf.thickness, mf.width};
     ElementProperties& e = flap.elements;
@@ -166,8 +161,8 @@ Result run(const Options& options, const Logger& logger, std::ostream& out) {
     std::int64_t clamped = 0;
     for (auto c : e.clamped) clamped += c;
     table << std::left << std::setw(12) << mf.name << std::setw(14) << material->name << std::right << std::setw(6)
-        << mf.elements << std::setw(18) << (number(*tmin) + ".." + number(*tmax)) << std::setw(20)
-        << (number(*emin / 1e9) + ".." + number(*emax / 1e9)) << std::setw(14) << std::setprecision(4) << eps_max
+        << mf.elements << std::setw(18) << (text::format_number(*tmin) + ".." + text::format_number(*tmax)) << std::setw(20)
+        << (text::format_number(*emin / 1e9) + ".." + text::format_number(*emax / 1e9)) << std::setw(14) << std::setprecision(4) << eps_max
         << std::setw(14) << allow_min << std::setw(9) << clamped << "\n";
     result.flaps.push_back(std::move(flap));
   }

@@ -13,17 +13,11 @@
 #include "mesh_tools.hpp"
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/polyline.hpp"
+#include "tfmb/common/text.hpp"
 #include "tfmb/formats/schema.hpp"
 
 namespace tfmb::mesh {
 namespace {
-
-std::string num(double v) {
-  std::ostringstream out;
-  out.precision(6);
-  out << v;
-  return out.str();
-}
 
 bool all_valid(const Mesh& mesh, const h5::MatrixXdR& points, std::int64_t* first_bad) {
   const auto cells = static_cast<std::int64_t>(mesh.cell_count());
@@ -89,7 +83,7 @@ Mesh deform_mesh(const Mesh& mesh, const std::vector<WallDisplacement>& walls, D
       }
       const double d = (x[static_cast<std::size_t>(node)] - w.x0[k]).norm();
       if (d > tight + 1e-6 * extent) {
-        throw BadInput("walldisp: /walls/" + w.boundary + "/x0 row " + std::to_string(k) + " is " + num(d) +
+        throw BadInput("walldisp: /walls/" + w.boundary + "/x0 row " + std::to_string(k) + " is " + text::format_number(d) +
                        " m from flow-mesh node " + std::to_string(node) + ": computed for another mesh");
       }
       prescribed[node] = w.displacement[k];
@@ -172,7 +166,7 @@ Mesh deform_mesh(const Mesh& mesh, const std::vector<WallDisplacement>& walls, D
           const double loose = 0.05 * std::max(boundary_length, 1e-3 * extent);
           if (best > loose) {
             throw BadInput("walldisp: node " + std::to_string(node) + " at " +
-                           geometry::format_point(p) + " of wall '" + name + "' is " + num(best) +
+                           geometry::format_point(p) + " of wall '" + name + "' is " + text::format_number(best) +
                            " m from the walldisp curves of " +
                            (same_name.empty() ? "flap '" + b.flap + "'" : "'" + name + "'") +
                            ": the displacement was computed for another mesh or geometry");
@@ -263,7 +257,7 @@ Mesh deform_mesh(const Mesh& mesh, const std::vector<WallDisplacement>& walls, D
                    geometry::format_point(where) +
                    "); the largest admissible fraction "
                    "of this displacement is " +
-                   num(lo) + " (apply it in smaller steps or remesh)");
+                   text::format_number(lo) + " (apply it in smaller steps or remesh)");
   }
   report.admissible_fraction = 1.0;
   report.quality = mesh_quality(out);

@@ -13,6 +13,7 @@
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/gmsh_session.hpp"
 #include "tfmb/common/polyline.hpp"
+#include "tfmb/common/text.hpp"
 
 namespace tfmb::mesh {
 
@@ -21,13 +22,6 @@ using namespace geometry;  // polyline helpers (libcommon)
 Mesh build_structured_mesh(const Model& model, double scale, FlowMeshReport& report);
 
 namespace {
-
-std::string num(double v) {
-  std::ostringstream out;
-  out.precision(4);
-  out << v;
-  return out.str();
-}
 
 // A part of a wall between two corners (turns above 10 degrees), to be sampled as one.
 struct Part {
@@ -263,7 +257,7 @@ Mesh build_flow_mesh(const Model& model, const FlowMeshOptions& options, FlowMes
   }
   if (layers < layers_wanted) {
     log.info("wall layers limited to " + std::to_string(layers) + " of " + std::to_string(layers_wanted) +
-             " (" + num(thickness(layers)) + " m thick): more would fold where a wall is concave");
+             " (" + text::format_number(thickness(layers), 4) + " m thick): more would fold where a wall is concave");
   }
   report.boundary_layers = layers;
   report.first_layer_height = layers > 0 ? h1 : 0.0;
@@ -538,7 +532,7 @@ Mesh build_flow_mesh(const Model& model, const FlowMeshOptions& options, FlowMes
   }
   report.seconds = clock.seconds();
   log.verbose("flow mesh: " + std::to_string(runs.size()) + " wall runs, " + std::to_string(layers) +
-              " layers, total " + num(heights.back()) + " m");
+              " layers, total " + text::format_number(heights.back(), 4) + " m");
   return mesh;
 }
 

@@ -3,17 +3,14 @@
 #include "mesh_tools.hpp"
 #include "tfmb/common/cli.hpp"
 #include "tfmb/common/errors.hpp"
+#include "tfmb/common/text.hpp"
 #include "tfmb/formats/schema.hpp"
 
 namespace tfmb::mesh {
 namespace {
 
-std::string num(double v, int digits = 4) {
-  std::ostringstream out;
-  out.precision(digits);
-  out << v;
-  return out.str();
-}
+// Four significant digits in the summaries (sizes and qualities, not results).
+std::string num(double v, int digits = 4) { return text::format_number(v, digits); }
 
 void write_quality(h5::Writer& w, const Quality& q) {
   w.set_attr("/mesh", "min_angle", q.min_angle);
