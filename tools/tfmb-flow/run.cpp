@@ -7,8 +7,8 @@
 #include "exact_nozzle.hpp"
 #include "tfmb/common/cli.hpp"
 #include "tfmb/common/errors.hpp"
-#include "tfmb/common/text.hpp"
 #include "tfmb/common/h5.hpp"
+#include "tfmb/common/text.hpp"
 #include "tfmb/formats/files.hpp"
 #include "tfmb/formats/schema.hpp"
 
@@ -95,7 +95,8 @@ std::vector<State> read_restart(const std::filesystem::path& file, const LoadedM
 }  // namespace
 
 RunResult run(const RunOptions& o, const Logger& log) {
-  require(o.gamma > 1.0 && o.gamma < 2.0, "--gamma must lie in (1, 2), got " + text::format_number(o.gamma));
+  require(o.gamma > 1.0 && o.gamma < 2.0,
+          "--gamma must lie in (1, 2), got " + text::format_number(o.gamma));
   require(o.gas_constant > 0.0, "--gas-constant must be positive");
   require(o.ambient_pressure > 0.0, "--ambient-pressure must be positive");
   require(o.model == "euler" || o.model == "laminar" || o.model == "sa" || o.model == "sa-noft2",
@@ -257,11 +258,11 @@ RunResult run(const RunOptions& o, const Logger& log) {
     result.time_average = run_time_accurate(solver, time, wall_curves);
     const TimeAccurateResult& ta = *result.time_average;
     log.info("time-accurate: " + std::to_string(time.time_steps) + " steps of " +
-             text::format_number(time.time_step) + " s (" + std::to_string(ta.iterations) + " inner iterations, " +
-             std::to_string(ta.unconverged_steps) + " steps short of the inner drop); mean over " +
-             std::to_string(ta.averaged_steps) +
-             " steps, wall pressure means of the window's halves differ by " + text::format_number(ta.mean_change) +
-             " p0");
+             text::format_number(time.time_step) + " s (" + std::to_string(ta.iterations) +
+             " inner iterations, " + std::to_string(ta.unconverged_steps) +
+             " steps short of the inner drop); mean over " + std::to_string(ta.averaged_steps) +
+             " steps, wall pressure means of the window's halves differ by " +
+             text::format_number(ta.mean_change) + " p0");
     // the report of a time-accurate run: one row per physical step
     SolveReport& r = result.report;
     r.converged = ta.mean_converged;
@@ -432,8 +433,8 @@ RunResult run(const RunOptions& o, const Logger& log) {
           std::isfinite(vel(k, 0) + vel(k, 1)))) {
       // the solver only keeps physical states; never hand a non-physical field to the next stage
       throw InternalError(o.output.string() + ": node " + std::to_string(k) +
-                          " has a non-physical final state (rho " + text::format_number(rho[k]) + ", p " +
-                          text::format_number(p[k]) + "); nothing written");
+                          " has a non-physical final state (rho " + text::format_number(rho[k]) +
+                          ", p " + text::format_number(p[k]) + "); nothing written");
     }
   }
   {
@@ -477,8 +478,8 @@ RunResult run(const RunOptions& o, const Logger& log) {
         w.write(g + "/adiabatic_wall_temperature", t.temperature, "K",
                 "wall temperature of the adiabatic solution");
         w.write(g + "/heat_transfer_coefficient", heat_transfer[c], "W/(m^2 K)",
-                "q_w / (T_aw - T_w) of an isothermal probe run " + text::format_number(heat_transfer_dt) +
-                    " K below T_aw");
+                "q_w / (T_aw - T_w) of an isothermal probe run " +
+                    text::format_number(heat_transfer_dt) + " K below T_aw");
       }
     }
     w.create_group("/integrals");
@@ -499,20 +500,21 @@ RunResult run(const RunOptions& o, const Logger& log) {
     std::string criterion = "density residual (RMS of residual/volume) below " +
                             text::format_number(settings.residual_drop) + " of its largest value";
     if (settings.stationary_tolerance > 0.0) {
-      criterion += ", or wall pressure (relative to " + text::format_number(settings.reference_state[3]) +
-                   " Pa) and wall pressure force changing by less than " +
-                   text::format_number(settings.stationary_tolerance) + " per iteration for " +
-                   std::to_string(settings.stationary_iterations) + " iterations" +
-                   (rep.converged ? (rep.converged_by_stationarity ? " (met: stationarity)"
-                                                                   : " (met: residual)")
-                                  : "");
+      criterion +=
+          ", or wall pressure (relative to " + text::format_number(settings.reference_state[3]) +
+          " Pa) and wall pressure force changing by less than " +
+          text::format_number(settings.stationary_tolerance) + " per iteration for " +
+          std::to_string(settings.stationary_iterations) + " iterations" +
+          (rep.converged
+               ? (rep.converged_by_stationarity ? " (met: stationarity)" : " (met: residual)")
+               : "");
     }
     if (result.time_average) {
       criterion = "time average over steps " + std::to_string(o.time.statistics_start) + ".." +
                   std::to_string(o.time.time_steps) +
                   ": wall pressure means of the window's two halves within " +
-                  text::format_number(o.time.statistics_tolerance) + " of " + text::format_number(settings.reference_state[3]) +
-                  " Pa";
+                  text::format_number(o.time.statistics_tolerance) + " of " +
+                  text::format_number(settings.reference_state[3]) + " Pa";
     }
     w.set_attr("/convergence", "criterion", criterion);
     w.set_attr("/convergence", "iterations", static_cast<std::int64_t>(rep.iterations));
@@ -597,26 +599,29 @@ RunResult run(const RunOptions& o, const Logger& log) {
   formats::write_xdmf_sidecar(o.output);
   if (!rep.converged && !rep.stop_reason.empty()) {
     log.warn("not converged: " + rep.stop_reason + "; largest density residual at (" +
-             text::format_number(rep.worst_residual_at.x) + ", " + text::format_number(rep.worst_residual_at.y) +
-             ") m; last update relaxed to " + text::format_number(rep.least_relaxation) + " at (" +
-             text::format_number(rep.least_relaxed_at.x) + ", " + text::format_number(rep.least_relaxed_at.y) +
+             text::format_number(rep.worst_residual_at.x) + ", " +
+             text::format_number(rep.worst_residual_at.y) + ") m; last update relaxed to " +
+             text::format_number(rep.least_relaxation) + " at (" +
+             text::format_number(rep.least_relaxed_at.x) + ", " +
+             text::format_number(rep.least_relaxed_at.y) +
              ") m; the last physical state is written");
   }
   // per unit depth (planar) or for the whole axisymmetric nozzle
   const bool whole = lm.geometry == Geometry::axisymmetric;
-  const std::string how = result.time_average
-                              ? "time average over " +
-                                    std::to_string(result.time_average->averaged_steps) +
-                                    " steps " + (rep.converged ? "converged" : "NOT converged") +
-                                    " (halves differ by " + text::format_number(result.time_average->mean_change) +
-                                    " p0), " + std::to_string(rep.iterations) + " inner iterations"
-                              : std::string(rep.converged ? "converged" : "NOT converged") +
-                                    " in " + std::to_string(rep.iterations) + " iterations";
+  const std::string how =
+      result.time_average
+          ? "time average over " + std::to_string(result.time_average->averaged_steps) + " steps " +
+                (rep.converged ? "converged" : "NOT converged") + " (halves differ by " +
+                text::format_number(result.time_average->mean_change) + " p0), " +
+                std::to_string(rep.iterations) + " inner iterations"
+          : std::string(rep.converged ? "converged" : "NOT converged") + " in " +
+                std::to_string(rep.iterations) + " iterations";
   log.summary("wrote " + o.output.string() + ": " + how + " (" +
               std::to_string(rep.linear_iterations) + " linear), residual drop " +
-              text::format_number(rep.residual_drop) + ", mass flow " + text::format_number(result.mass_flow) +
-              (whole ? " kg/s" : " kg/(s m)") + ", thrust " + text::format_number(result.thrust_x) +
-              (whole ? " N" : " N/m") + ", " + text::format_number(rep.wall_time) + " s");
+              text::format_number(rep.residual_drop) + ", mass flow " +
+              text::format_number(result.mass_flow) + (whole ? " kg/s" : " kg/(s m)") +
+              ", thrust " + text::format_number(result.thrust_x) + (whole ? " N" : " N/m") + ", " +
+              text::format_number(rep.wall_time) + " s");
   return result;
 }
 

@@ -52,11 +52,12 @@ Polyline chain_curves(const FlapSpec& spec, const std::map<std::string, const Cu
       double s = 0.0;
       const bool overlap = distance_to(line, next.front(), &s) <= tolerance ||
                            distance_to(next, line.back(), &s) <= tolerance;
-      throw BadInput(std::string(overlap ? "overlap" : "gap") + " of " + text::format_number(gap, 4) + " m between curve '" +
-                     curves[k - 1]->name + "' (end at " + format_point(line.back()) +
-                     ") and curve '" + curves[k]->name + "' (start at " +
-                     format_point(next.front()) + ") in flap '" + spec.flap.name +
-                     "' (tolerance " + text::format_number(tolerance, 4) + " m, geometry.tolerance)");
+      throw BadInput(std::string(overlap ? "overlap" : "gap") + " of " +
+                     text::format_number(gap, 4) + " m between curve '" + curves[k - 1]->name +
+                     "' (end at " + format_point(line.back()) + ") and curve '" + curves[k]->name +
+                     "' (start at " + format_point(next.front()) + ") in flap '" + spec.flap.name +
+                     "' (tolerance " + text::format_number(tolerance, 4) +
+                     " m, geometry.tolerance)");
     }
     line.insert(line.end(), next.begin() + 1, next.end());
   }
@@ -90,9 +91,11 @@ void build_flap(Flap& flap, const Logger& log) {
   flap.outer_wall = offset(flap.reference_geometry, -inner_sign * half_t);
   for (const auto* wall : {&flap.inner_wall, &flap.outer_wall}) {
     if (auto c = self_intersection(*wall)) {
-      throw BadInput("self-intersecting wall: the " + std::string(wall == &flap.inner_wall ? "inner" : "outer") +
+      throw BadInput("self-intersecting wall: the " +
+                     std::string(wall == &flap.inner_wall ? "inner" : "outer") +
                      " surface of flap '" + flap.name + "' folds at " + format_point(c->point) +
-                     ": thickness " + text::format_number(flap.thickness, 4) + " m is too large for the curvature there");
+                     ": thickness " + text::format_number(flap.thickness, 4) +
+                     " m is too large for the curvature there");
     }
   }
   const auto s = geometry::cumulative_length(flap.reference_geometry);
@@ -110,11 +113,13 @@ void build_flap(Flap& flap, const Logger& log) {
   }
   const double len = length(flap.reference_geometry);
   if (len > 50.0 || len < 1e-3) {
-    log.warn("flap '" + flap.name + "' is " + text::format_number(len, 4) + " m long: check geometry.scale (units)");
+    log.warn("flap '" + flap.name + "' is " + text::format_number(len, 4) +
+             " m long: check geometry.scale (units)");
   }
   if (flap.thickness > 0.25 * len) {
-    log.warn("flap '" + flap.name + "' thickness " + text::format_number(flap.thickness, 4) + " m is more than a quarter of its length " +
-             text::format_number(len, 4) + " m: a beam model is doubtful; check units");
+    log.warn("flap '" + flap.name + "' thickness " + text::format_number(flap.thickness, 4) +
+             " m is more than a quarter of its length " + text::format_number(len, 4) +
+             " m: a beam model is doubtful; check units");
   }
 }
 
@@ -140,8 +145,9 @@ void build_joint(const JointSpec& spec, Joint& joint, const Model& model, double
       if (std::min(ds, de) > tolerance) {
         throw BadInput(where + " at " + format_point(joint.point) + " is not at an end of flap '" +
                        flap->name + "' (nearest end '" + *end + "' at " +
-                       format_point(end_point(*flap, *end)) + ", " + text::format_number(std::min(ds, de), 4) +
-                       " m away; tolerance " + text::format_number(tolerance, 4) + " m)");
+                       format_point(end_point(*flap, *end)) + ", " +
+                       text::format_number(std::min(ds, de), 4) + " m away; tolerance " +
+                       text::format_number(tolerance, 4) + " m)");
       }
     }
     return;
@@ -162,12 +168,13 @@ void build_joint(const JointSpec& spec, Joint& joint, const Model& model, double
   if (best > tolerance) {
     const bool overlap = distance_to(b->reference_geometry, pa) <= tolerance ||
                          distance_to(a->reference_geometry, pb) <= tolerance;
-    throw BadInput(std::string(overlap ? "overlap" : "gap") + " of " + text::format_number(best, 4) + " m at " + where +
-                   ": curve '" + (joint.end_a == "start" ? a->curves.front() : a->curves.back()) +
-                   "' of flap '" + a->name + "' ends at " + format_point(pa) + ", curve '" +
+    throw BadInput(std::string(overlap ? "overlap" : "gap") + " of " +
+                   text::format_number(best, 4) + " m at " + where + ": curve '" +
+                   (joint.end_a == "start" ? a->curves.front() : a->curves.back()) + "' of flap '" +
+                   a->name + "' ends at " + format_point(pa) + ", curve '" +
                    (joint.end_b == "start" ? b->curves.front() : b->curves.back()) + "' of flap '" +
-                   b->name + "' at " + format_point(pb) + " (tolerance " + text::format_number(tolerance, 4) +
-                   " m, geometry.tolerance)");
+                   b->name + "' at " + format_point(pb) + " (tolerance " +
+                   text::format_number(tolerance, 4) + " m, geometry.tolerance)");
   }
 }
 
@@ -340,7 +347,8 @@ std::vector<DomainBoundary> nozzle_domain(const Model& model) {
   const double x_down = x_max + d.downstream_length;
   const double height = d.farfield_height;
   if (height <= 1.2 * y_abs) {
-    throw BadInput("domain.farfield_height = " + text::format_number(height, 4) + " m must clearly exceed the nozzle's largest |y| = " +
+    throw BadInput("domain.farfield_height = " + text::format_number(height, 4) +
+                   " m must clearly exceed the nozzle's largest |y| = " +
                    text::format_number(y_abs, 4) + " m");
   }
   // Upper chain: internal flow on its right (-1); lower chain: on its left (+1).
@@ -577,10 +585,12 @@ void run(const Options& options, const Logger& log) {
   provenance.inputs = {options.case_file};
   if (!spec.geometry.file.empty()) provenance.inputs.push_back(spec.geometry.file);
   write_model(model, options.output, "tfmb-input " + cli::version(), provenance);
-  log.summary("wrote " + options.output.string() + ": " + std::to_string(model.flaps.size()) + " flaps, " +
-              std::to_string(model.joints.size()) + " joints, " + std::to_string(model.supports.size()) +
-              " supports, " + std::to_string(model.domain.boundaries.size()) + " domain boundaries, first cell " +
-              text::format_number(model.flow.first_cell_height, 4) + " m (" + text::format_number(clock.seconds(), 4) + " s)");
+  log.summary("wrote " + options.output.string() + ": " + std::to_string(model.flaps.size()) +
+              " flaps, " + std::to_string(model.joints.size()) + " joints, " +
+              std::to_string(model.supports.size()) + " supports, " +
+              std::to_string(model.domain.boundaries.size()) + " domain boundaries, first cell " +
+              text::format_number(model.flow.first_cell_height, 4) + " m (" +
+              text::format_number(clock.seconds(), 4) + " s)");
 }
 
 }  // namespace tfmb::input

@@ -169,7 +169,8 @@ ForcesResult run_forces_unchecked(const ForcesOptions& options, const Logger& lo
   }
   result.loads.load_basis =
       "per unit beam length over the flap width (flow traces are per unit depth " +
-      text::format_number(result.loads.header.depth) + " m and are multiplied by each flap's width)";
+      text::format_number(result.loads.header.depth) +
+      " m and are multiplied by each flap's width)";
 
   // Every trace must belong to a model flap.
   std::map<std::string, const ModelFlap*> by_name;
@@ -224,9 +225,10 @@ ForcesResult run_forces_unchecked(const ForcesOptions& options, const Logger& lo
       for (std::size_t k = 0; k < t->points.size(); ++k) {
         const double distance = (t->points[k] - beam.project(t->points[k]).point).norm();
         if (distance > reach) {
-          throw BadInput(source + ": /walls/" + t->name + ": point " + std::to_string(k) + " lies " +
-                         text::format_number(distance) + " m from the beam of flap '" + flap.name +
-                         "' (more than " + text::format_number(reach) + " m): is the boundary's flap attribute right?");
+          throw BadInput(source + ": /walls/" + t->name + ": point " + std::to_string(k) +
+                         " lies " + text::format_number(distance) + " m from the beam of flap '" +
+                         flap.name + "' (more than " + text::format_number(reach) +
+                         " m): is the boundary's flap attribute right?");
         }
       }
     }
@@ -347,10 +349,12 @@ DisplaceResult run_displace_unchecked(const DisplaceOptions& options, const Logg
         const double distance = std::min((points[k] - closest_point(line, points[k])).norm(),
                                          (points[k] - closest_point(flap.reference_curve, points[k])).norm());
         if (distance > tolerance) {
-          throw BadInput(sfile + ": /flaps/" + flap.name + "/nodes: beam node " + std::to_string(k) + " at (" +
-                         text::format_number(points[k].x()) + ", " + text::format_number(points[k].y()) + ") m lies " +
-                         text::format_number(distance) + " m off the reference curve of flap '" + flap.name +
-                         "' in " + options.model_file.string() + " (mismatched model and structure files)");
+          throw BadInput(sfile + ": /flaps/" + flap.name + "/nodes: beam node " +
+                         std::to_string(k) + " at (" + text::format_number(points[k].x()) + ", " +
+                         text::format_number(points[k].y()) + ") m lies " +
+                         text::format_number(distance) + " m off the reference curve of flap '" +
+                         flap.name + "' in " + options.model_file.string() +
+                         " (mismatched model and structure files)");
         }
       }
       if ((points.front() - flap.reference_curve.front()).norm() > tolerance ||
@@ -420,9 +424,10 @@ DisplaceResult run_displace_unchecked(const DisplaceOptions& options, const Logg
   }
   formats::Provenance provenance;
   provenance.command_line = options.command_line;
-  provenance.settings = "command = \"displace\"\n" +
-                        (use_function ? "function = \"" + options.function + "\"\n" : std::string()) +
-                        "match_tolerance = " + text::format_number(options.match_tolerance) + "\n";
+  provenance.settings =
+      "command = \"displace\"\n" +
+      (use_function ? "function = \"" + options.function + "\"\n" : std::string()) +
+      "match_tolerance = " + text::format_number(options.match_tolerance) + "\n";
   if (!use_function) provenance.inputs.push_back(options.structure_file);
   provenance.inputs.push_back(options.model_file);
   if (!options.mesh_file.empty()) provenance.inputs.push_back(options.mesh_file);

@@ -20,7 +20,8 @@ std::string normalise(const std::string& name) {
 
 OutsideTable::OutsideTable(const PropertyTable& table, double t)
     : std::runtime_error(text::format_number(t) + " K is outside the " + table.name + " table [" +
-                         text::format_number(table.lowest()) + ", " + text::format_number(table.highest()) + "] K"),
+                         text::format_number(table.lowest()) + ", " +
+                         text::format_number(table.highest()) + "] K"),
       temperature(t),
       lowest(table.lowest()),
       highest(table.highest()),

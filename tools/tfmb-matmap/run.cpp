@@ -6,10 +6,10 @@
 #include <sstream>
 
 #include "section.hpp"
-#include "thermal_strain.hpp"
 #include "tfmb/common/cli.hpp"
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/text.hpp"
+#include "thermal_strain.hpp"
 
 namespace tfmb::matmap {
 
@@ -26,7 +26,10 @@ struct ElementLookup {
     const PropertyTable& table = material.require(property);
     try {
       const Evaluation e = evaluate(table, t, clamp);
-      if (e.clamped) clamped.insert(property + " at " + which + " " + text::format_number(t) + " K [" + text::format_number(table.lowest()) + ", " + text::format_number(table.highest()) + "]");
+      if (e.clamped)
+        clamped.insert(property + " at " + which + " " + text::format_number(t) + " K [" +
+                       text::format_number(table.lowest()) + ", " +
+                       text::format_number(table.highest()) + "]");
       return e.value;
     } catch (const OutsideTable& e) {
       throw BadInput(location + ": " + which + " " + e.what() + " of " + material.name +
@@ -93,17 +96,22 @@ Result run(const Options& options, const Logger& logger, std::ostream& out) {
                      (has_nu ? "shear_modulus" : "poisson_ratio") +
                      " (missing: " + material->missing + "); give --poisson-ratio to use G = E / (2 (1 + nu))");
     }
-    flap.shear_modulus_basis = has_g && has_nu ? "material database"
-                                               : "G = E / (2 (1 + nu)) with nu = " + text::format_number(*options.poisson_ratio) + " (--poisson-ratio)";
+    flap.shear_modulus_basis =
+        has_g && has_nu
+            ? "material database"
+            : "G = E / (2 (1 + nu)) with nu = " + text::format_number(*options.poisson_ratio) +
+                  " (--poisson-ratio)";
     flap.has_strength = material->find("yield_strength") && material->find("ultimate_strength");
     if (!material->find("allowable_strain") && !options.allowable_strain) {
       throw BadInput(options.database_file.string() + ": /materials/" + material->name +
                      ": no allowable_strain (missing: " + material->missing +
                      "); give --allowable-strain to use a temperature-independent value");
     }
-    flap.allowable_strain_basis = options.allowable_strain
-                                      ? "temperature-independent value " + text::format_number(*options.allowable_strain) + " (--allowable-strain)"
-                                      : "material database: yield_strength / youngs_modulus at the element temperature";
+    flap.allowable_strain_basis =
+        options.allowable_strain
+            ? "temperature-independent value " + text::format_number(*options.allowable_strain) +
+                  " (--allowable-strain)"
+            : "material database: yield_strength / youngs_modulus at the element temperature";
     const RectangleSection section{mf.thickness, mf.width};
     ElementProperties& e = flap.elements;
     const double t_ref = material->reference_temperature;
@@ -160,10 +168,12 @@ Result run(const Options& options, const Logger& logger, std::ostream& out) {
     const double allow_min = *std::min_element(e.allowable_strain.begin(), e.allowable_strain.end());
     std::int64_t clamped = 0;
     for (auto c : e.clamped) clamped += c;
-    table << std::left << std::setw(12) << mf.name << std::setw(14) << material->name << std::right << std::setw(6)
-        << mf.elements << std::setw(18) << (text::format_number(*tmin) + ".." + text::format_number(*tmax)) << std::setw(20)
-        << (text::format_number(*emin / 1e9) + ".." + text::format_number(*emax / 1e9)) << std::setw(14) << std::setprecision(4) << eps_max
-        << std::setw(14) << allow_min << std::setw(9) << clamped << "\n";
+    table << std::left << std::setw(12) << mf.name << std::setw(14) << material->name << std::right
+          << std::setw(6) << mf.elements << std::setw(18)
+          << (text::format_number(*tmin) + ".." + text::format_number(*tmax)) << std::setw(20)
+          << (text::format_number(*emin / 1e9) + ".." + text::format_number(*emax / 1e9))
+          << std::setw(14) << std::setprecision(4) << eps_max << std::setw(14) << allow_min
+          << std::setw(9) << clamped << "\n";
     result.flaps.push_back(std::move(flap));
   }
   out << table.str();

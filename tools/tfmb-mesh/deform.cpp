@@ -83,8 +83,9 @@ Mesh deform_mesh(const Mesh& mesh, const std::vector<WallDisplacement>& walls, D
       }
       const double d = (x[static_cast<std::size_t>(node)] - w.x0[k]).norm();
       if (d > tight + 1e-6 * extent) {
-        throw BadInput("walldisp: /walls/" + w.boundary + "/x0 row " + std::to_string(k) + " is " + text::format_number(d) +
-                       " m from flow-mesh node " + std::to_string(node) + ": computed for another mesh");
+        throw BadInput("walldisp: /walls/" + w.boundary + "/x0 row " + std::to_string(k) + " is " +
+                       text::format_number(d) + " m from flow-mesh node " + std::to_string(node) +
+                       ": computed for another mesh");
       }
       prescribed[node] = w.displacement[k];
     }
@@ -166,8 +167,8 @@ Mesh deform_mesh(const Mesh& mesh, const std::vector<WallDisplacement>& walls, D
           const double loose = 0.05 * std::max(boundary_length, 1e-3 * extent);
           if (best > loose) {
             throw BadInput("walldisp: node " + std::to_string(node) + " at " +
-                           geometry::format_point(p) + " of wall '" + name + "' is " + text::format_number(best) +
-                           " m from the walldisp curves of " +
+                           geometry::format_point(p) + " of wall '" + name + "' is " +
+                           text::format_number(best) + " m from the walldisp curves of " +
                            (same_name.empty() ? "flap '" + b.flap + "'" : "'" + name + "'") +
                            ": the displacement was computed for another mesh or geometry");
           }

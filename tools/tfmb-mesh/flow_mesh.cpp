@@ -256,8 +256,9 @@ Mesh build_flow_mesh(const Model& model, const FlowMeshOptions& options, FlowMes
                    "refine mesh.wall_size");
   }
   if (layers < layers_wanted) {
-    log.info("wall layers limited to " + std::to_string(layers) + " of " + std::to_string(layers_wanted) +
-             " (" + text::format_number(thickness(layers), 4) + " m thick): more would fold where a wall is concave");
+    log.info("wall layers limited to " + std::to_string(layers) + " of " +
+             std::to_string(layers_wanted) + " (" + text::format_number(thickness(layers), 4) +
+             " m thick): more would fold where a wall is concave");
   }
   report.boundary_layers = layers;
   report.first_layer_height = layers > 0 ? h1 : 0.0;
@@ -531,8 +532,9 @@ Mesh build_flow_mesh(const Model& model, const FlowMeshOptions& options, FlowMes
     report.estimated_yplus = estimated_yplus(model, report.first_layer_height);
   }
   report.seconds = clock.seconds();
-  log.verbose("flow mesh: " + std::to_string(runs.size()) + " wall runs, " + std::to_string(layers) +
-              " layers, total " + text::format_number(heights.back(), 4) + " m");
+  log.verbose("flow mesh: " + std::to_string(runs.size()) + " wall runs, " +
+              std::to_string(layers) + " layers, total " + text::format_number(heights.back(), 4) +
+              " m");
   return mesh;
 }
 

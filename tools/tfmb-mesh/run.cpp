@@ -10,7 +10,9 @@ namespace tfmb::mesh {
 namespace {
 
 // Four significant digits in the summaries (sizes and qualities, not results).
-std::string num(double v, int digits = 4) { return text::format_number(v, digits); }
+std::string num(double v, int digits = 4) {
+  return text::format_number(v, digits);
+}
 
 void write_quality(h5::Writer& w, const Quality& q) {
   w.set_attr("/mesh", "min_angle", q.min_angle);
