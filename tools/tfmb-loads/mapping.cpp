@@ -1,10 +1,10 @@
 #include "mapping.hpp"
+#include "tfmb/common/quadrature.hpp"
 
 #include <cmath>
 #include <limits>
 #include <algorithm>
 
-#include "quadrature.hpp"
 
 namespace tfmb::loads {
 
@@ -89,7 +89,8 @@ FlapLoads map_conservative(const BeamLine& beam, const std::vector<const WallTra
         const double ua = cuts[c];
         const double ub = cuts[c + 1];
         if (!(ub > ua)) continue;
-        for (const auto& [g, w] : gauss_legendre_2) {
+        static const auto gauss_2 = quadrature::gauss_legendre_unit(2);  // on [0, 1]
+        for (const auto& [g, w] : gauss_2) {
           const double u = ua + g * (ub - ua);
           const double weight = w * (ub - ua) * h * width;
           const Vec2 x = trace->position(k, u);

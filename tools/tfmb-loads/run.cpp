@@ -7,11 +7,11 @@
 #include <sstream>
 
 #include "expression.hpp"
-#include "quadrature.hpp"
 #include "tfmb/common/cli.hpp"
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/geometry.hpp"
 #include "tfmb/common/text.hpp"
+#include "tfmb/common/quadrature.hpp"
 
 namespace tfmb::loads {
 
@@ -119,7 +119,8 @@ FlapLoads reference_loads(const BeamLine& beam, const ModelFlap& flap, const Fun
       const Vec2 n = t.normal_sign * Vec2(-e.y(), e.x());
       const double h = (wall[k + 1] - wall[k]).norm() / 64.0;
       for (int piece = 0; piece < 64; ++piece) {
-        for (const auto& [g, w] : gauss_legendre_5) {
+        static const auto gauss_5 = quadrature::gauss_legendre_unit(5);  // on [0, 1]
+        for (const auto& [g, w] : gauss_5) {
           const Vec2 x = wall[k] + (piece + g) / 64.0 * (wall[k + 1] - wall[k]);
           const Vec2 traction = -f.value("p", side, x) * n + f.value("tau", side, x) * e;
           exact.force += width * w * h * traction;

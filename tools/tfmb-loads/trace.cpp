@@ -1,11 +1,11 @@
 #include "trace.hpp"
+#include "tfmb/common/quadrature.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
-#include "quadrature.hpp"
 
 namespace tfmb::loads {
 
@@ -61,7 +61,8 @@ Resultant integrate_traces(const std::vector<const WallTrace*>& traces) {
   for (const WallTrace* trace : traces) {
     for (std::size_t k = 0; k < trace->segment_count(); ++k) {
       const double h = (trace->points[k + 1] - trace->points[k]).norm();
-      for (const auto& [u, w] : gauss_legendre_2) {
+      static const auto gauss_2 = quadrature::gauss_legendre_unit(2);  // on [0, 1]
+      for (const auto& [u, w] : gauss_2) {
         const Vec2 t = trace->traction(k, u);
         total.force += w * h * t;
         total.moment += w * h * cross(trace->position(k, u), t);

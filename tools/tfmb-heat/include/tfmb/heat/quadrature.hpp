@@ -1,5 +1,6 @@
 #pragma once
 // Gauss quadrature rules on the reference elements of shape_functions.hpp.
+#include "tfmb/common/quadrature.hpp"
 #include "tfmb/heat/mesh.hpp"
 
 #include <array>
@@ -7,18 +8,13 @@
 
 namespace tfmb::heat {
 
-struct QuadratureRule1D {
-  std::vector<double> points;   // on [-1, 1]
-  std::vector<double> weights;  // sum to 2
-};
+using QuadratureRule1D = quadrature::Rule1D;  // points on [-1, 1], weights sum to 2
+using quadrature::gauss_legendre;           // n points, exact for degree 2n - 1 (libcommon)
 
 struct QuadratureRule2D {
   std::vector<std::array<double, 2>> points;
   std::vector<double> weights;  // sum to the reference area: 1/2 (triangle) or 4 (quad)
 };
-
-/// n-point Gauss-Legendre rule, exact for polynomials of degree 2n - 1.
-QuadratureRule1D gauss_legendre(int n);
 
 /// Tensor-product n x n Gauss rule on [-1, 1]^2.
 QuadratureRule2D quad_gauss(int n);
