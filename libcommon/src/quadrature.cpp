@@ -7,7 +7,8 @@
 namespace tfmb::quadrature {
 
 Rule1D gauss_legendre(int n) {
-  if (n < 1 || n > 20) throw std::invalid_argument("gauss_legendre: n must be in [1, 20]");
+  if (n < 1 || n > 20)
+    throw std::invalid_argument("gauss_legendre: n must be in [1, 20]");
   // Roots of P_n by Newton from the Chebyshev-like guess; weights 2 / ((1 - x^2) P_n'(x)^2).
   // Abramowitz & Stegun (1964) 25.4.29.
   Rule1D rule;
@@ -26,10 +27,12 @@ Rule1D gauss_legendre(int n) {
       derivative = n * (x * p1 - p0) / (x * x - 1.0);
       const double dx = p1 / derivative;
       x -= dx;
-      if (std::abs(dx) < 1e-16) break;
+      if (std::abs(dx) < 1e-16)
+        break;
     }
     rule.points[static_cast<std::size_t>(n - 1 - i)] = x;
-    rule.weights[static_cast<std::size_t>(n - 1 - i)] = 2.0 / ((1.0 - x * x) * derivative * derivative);
+    rule.weights[static_cast<std::size_t>(n - 1 - i)] =
+        2.0 / ((1.0 - x * x) * derivative * derivative);
   }
   return rule;
 }

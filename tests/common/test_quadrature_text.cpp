@@ -15,11 +15,14 @@ TEST(Quadrature, UnitRuleIsExactUpToDegreeTwoNMinusOne) {
     ASSERT_EQ(rule.size(), static_cast<std::size_t>(n));
     auto integral = [&](int k) {
       double sum = 0.0;
-      for (const auto& [x, w] : rule) sum += w * std::pow(x, k);
+      for (const auto& [x, w] : rule)
+        sum += w * std::pow(x, k);
       return sum;
     };
-    for (int k = 0; k <= 2 * n - 1; ++k) EXPECT_NEAR(integral(k), 1.0 / (k + 1), 1e-14) << "n " << n << " k " << k;
-    EXPECT_GT(std::abs(integral(2 * n) - 1.0 / (2 * n + 1)), 1e-12) << "n " << n;  // the error is ~1e-10 at n = 8
+    for (int k = 0; k <= 2 * n - 1; ++k)
+      EXPECT_NEAR(integral(k), 1.0 / (k + 1), 1e-14) << "n " << n << " k " << k;
+    EXPECT_GT(std::abs(integral(2 * n) - 1.0 / (2 * n + 1)), 1e-12)
+        << "n " << n;  // the error is ~1e-10 at n = 8
   }
 }
 

@@ -5,7 +5,6 @@
 #include <limits>
 #include <algorithm>
 
-
 namespace tfmb::loads {
 
 const char* method_name(Method method) {

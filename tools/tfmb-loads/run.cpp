@@ -10,8 +10,8 @@
 #include "tfmb/common/cli.hpp"
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/geometry.hpp"
-#include "tfmb/common/text.hpp"
 #include "tfmb/common/quadrature.hpp"
+#include "tfmb/common/text.hpp"
 
 namespace tfmb::loads {
 

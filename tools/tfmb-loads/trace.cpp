@@ -6,7 +6,6 @@
 #include <limits>
 #include <stdexcept>
 
-
 namespace tfmb::loads {
 
 const char* side_name(Side side) {

@@ -9,7 +9,7 @@
 namespace tfmb::heat {
 
 using QuadratureRule1D = quadrature::Rule1D;  // points on [-1, 1], weights sum to 2
-using quadrature::gauss_legendre;           // n points, exact for degree 2n - 1 (libcommon)
+using quadrature::gauss_legendre;             // n points, exact for degree 2n - 1 (libcommon)
 
 struct QuadratureRule2D {
   std::vector<std::array<double, 2>> points;
