@@ -4,8 +4,8 @@
 // Sample runs:
 //   tfmb-input cases/simple-nozzle/case.toml -o model.h5
 //   tfmb-input cases/realistic-nozzle/case.toml -o model.h5 --set flow.nozzle_pressure_ratio=5.423
-//   --set flap.upper_divergent.thickness=0.004 tfmb-input case.toml -o model.h5 --curves-csv
-//   curves.csv   # also dump the curves read from a STEP file
+//     --set flap.upper_divergent.thickness=0.004
+//   tfmb-input case.toml -o model.h5 --curves-csv curves.csv   # also dumps the curves it read
 #include "model_build.hpp"
 #include "tfmb/common/cli.hpp"
 
