@@ -7,7 +7,7 @@ Schema flow_schema() {
   Schema s{"flow",
            "tfmb/flow",
            1,
-           3,
+           4,
            "flow solution: node fields, wall traces, integrated thrust and mass flow",
            true,
            {},
@@ -31,6 +31,10 @@ Schema flow_schema() {
   s.datasets.push_back(f64("/walls/*/wall_shear", {"n"}, "Pa",
                            "wall shear stress along the wall direction of increasing s"));
   s.datasets.push_back(f64("/walls/*/heat_flux", {"n"}, "W/m^2", "into the wall"));
+  s.datasets.push_back(f64("/walls/*/normal", {"n", "2"}, "1",
+                           "unit normal leaving the fluid (into the wall) at each trace point: the "
+                           "pressure's traction on the wall is pressure * normal",
+                           false));
   s.datasets.push_back(f64("/walls/*/heat_transfer_coefficient", {"n"}, "W/(m^2 K)",
                            "q_w / (T_aw - T_w) of an isothermal probe run below T_aw (viscous, adiabatic walls)", false));
   s.datasets.push_back(f64("/walls/*/adiabatic_wall_temperature", {"n"}, "K",

@@ -227,8 +227,8 @@ inline TestTrace make_trace(std::string name, std::string flap, std::string side
   return t;
 }
 
-// A flow file whose mesh is one row of quads on the fluid side of each trace (so the wall
-// orientation is defined by the mesh, as in a real flow file) plus one triangle.
+// A flow file whose mesh is one row of quads on the fluid side of each trace plus one triangle,
+// with each trace's normals leaving the fluid (flow 1.4), as tfmb-flow writes them.
 inline void write_flow(const std::filesystem::path& file, const std::vector<TestTrace>& traces) {
   std::vector<Vec2> points;
   std::vector<std::array<std::int64_t, 4>> quads;
@@ -298,6 +298,14 @@ inline void write_flow(const std::filesystem::path& file, const std::vector<Test
     w.write(g + "/temperature", temperature, "K");
     w.write(g + "/wall_shear", t.wall_shear, "Pa");
     w.write(g + "/heat_flux", flux, "W/m^2");
+    // flow 1.4: the unit normal leaving the fluid, i.e. away from the fluid side of the points.
+    h5::MatrixXdR normal(static_cast<Eigen::Index>(t.points.size()), 2);
+    for (std::size_t i = 0; i < t.points.size(); ++i) {
+      const std::size_t a = i == 0 ? 0 : i - 1, b = i + 1 < t.points.size() ? i + 1 : i;
+      const Vec2 e = (t.points[b] - t.points[a]).normalized();
+      normal.row(static_cast<Eigen::Index>(i)) = -t.fluid_side * Vec2(-e.y(), e.x()).transpose();
+    }
+    w.write(g + "/normal", normal, "1");
   }
   for (const char* name : {"mass_flow", "thrust_x", "thrust_y", "thrust_angle", "discharge_coefficient"}) {
     w.set_attr("/integrals", name, 0.5);

@@ -1,5 +1,6 @@
 // tfmb-loads end to end on files written by the tests: outputs validate against their
 // schemas, totals are printed, bad inputs exit 3 with a located message.
+#include <hdf5.h>
 #include <unistd.h>
 #include <gtest/gtest.h>
 
@@ -260,4 +261,43 @@ TEST(LoadsFiles, ATraceFarFromItsFlapIsRefused) {
                     (files.dir / "loads.h5").string(), &err), 3);
   EXPECT_NE(err.find("/walls/stray: point 0 lies"), std::string::npos) << err;
   EXPECT_NE(err.find("flap attribute"), std::string::npos) << err;
+}
+
+// The fluid side of a wall comes from the flow file's normals (flow 1.4): the same traces with
+// their normals reversed load the flap from the other side, and a flap wall without normals is
+// refused with a located message.
+TEST(LoadsFiles, TheWallNormalsSayWhereTheFluidIs) {
+  auto total_y = [](const std::string& name, double fluid_side) {
+    const Files files(name);
+    const tf::TestFlap& flap = files.flaps[0];
+    auto p = [](const Vec2&) { return 2e5; };
+    auto zero = [](const Vec2&) { return 0.0; };
+    tf::write_flow(files.flow, {tf::make_trace("in", flap.name, "inner", flap.inner_wall, p, zero, fluid_side),
+                                tf::make_trace("out", flap.name, "outer", flap.outer_wall, zero, zero, -fluid_side),
+                                tf::make_trace("lower_in", "lower", "inner", files.flaps[1].inner_wall, zero, zero, 1.0),
+                                tf::make_trace("lower_out", "lower", "outer", files.flaps[1].outer_wall, zero, zero, -1.0)});
+    const auto out = files.dir / "loads.h5";
+    EXPECT_EQ(run_cli("forces " + files.flow.string() + " " + files.model.string() + " -o " + out.string()), 0);
+    const h5::Reader r(out);
+    const h5::MatrixXdR f = r.read_matrix("/flaps/" + flap.name + "/nodal_force", std::nullopt, 3);
+    return f.col(1).sum();
+  };
+  const double as_given = total_y("normals-right", -1.0), reversed = total_y("normals-reversed", 1.0);
+  EXPECT_GT(std::abs(as_given), 1e3);
+  EXPECT_NEAR(reversed, -as_given, 1e-9 * std::abs(as_given));
+
+  const Files files("normals-missing");
+  {
+    const hid_t file = H5Fopen(files.flow.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    ASSERT_GE(file, 0);
+    EXPECT_GE(H5Ldelete(file, "/walls/upper_in/normal", H5P_DEFAULT), 0);
+    H5Fclose(file);
+  }
+  std::string err;
+  EXPECT_EQ(run_cli("forces " + files.flow.string() + " " + files.model.string() + " -o " +
+                        (files.dir / "loads.h5").string(),
+                    &err),
+            3);
+  EXPECT_NE(err.find("/walls/upper_in: no /normal"), std::string::npos) << err;
+  EXPECT_FALSE(std::filesystem::exists(files.dir / "loads.h5"));
 }

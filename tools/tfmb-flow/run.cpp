@@ -470,6 +470,10 @@ RunResult run(const RunOptions& o, const Logger& log) {
       w.write(g + "/temperature", t.temperature, "K", "wall temperature");
       w.write(g + "/wall_shear", t.shear_stress, "Pa", "along the direction of increasing s");
       w.write(g + "/heat_flux", t.heat_flux, "W/m^2", "into the wall");
+      h5::MatrixXdR normal(static_cast<Eigen::Index>(t.normal.size()), 2);
+      for (std::size_t k = 0; k < t.normal.size(); ++k)
+        normal.row(static_cast<Eigen::Index>(k)) << t.normal[k].x, t.normal[k].y;
+      w.write(g + "/normal", normal, "1", "unit normal leaving the fluid (into the wall)");
       if (result.time_average) {
         w.write(g + "/pressure_rms", result.time_average->pressure_rms[c], "Pa",
                 "root mean square of the wall pressure fluctuation over the statistics window");

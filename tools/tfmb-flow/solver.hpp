@@ -221,6 +221,9 @@ struct WallTrace {
   std::vector<double> shear_stress;
   // Heat flux from the fluid into the wall [W/m^2] (0 if inviscid).
   std::vector<double> heat_flux;
+  // Unit normal leaving the fluid (into the wall) at each node: the sum of the node's outward
+  // boundary dual-face normals on this curve, normalised.
+  std::vector<Vec2> normal;
 };
 
 class FlowSolver {

@@ -31,6 +31,29 @@ h5::MatrixXdR rows3(const std::vector<Vec2>& v, bool as_3d = true) {
   return m;
 }
 
+// Which side of a trace the fluid is on, from the flow file's wall normals (flow 1.4: unit
+// normals leaving the fluid): the sign that turns the segments' left normals out of the solid,
+// i.e. against the flow's normals, by a length-weighted vote over the segments.
+double fluid_side(const h5::Reader& file, const std::string& group, const WallTrace& trace) {
+  if (!file.exists(group + "/normal")) {
+    file.fail(group, "no /normal: tfmb-loads needs each flap wall's normal (flow 1.4) to know which side "
+                     "the fluid is on; re-run tfmb-flow, or have the external flow code write it");
+  }
+  const h5::MatrixXdR normal = file.read_matrix(group + "/normal", static_cast<Eigen::Index>(trace.points.size()), 2);
+  for (Eigen::Index k = 0; k < normal.rows(); ++k) {
+    if (std::abs(normal.row(k).norm() - 1.0) > 1e-6)
+      file.fail(group + "/normal", "row " + std::to_string(k) + " is not a unit vector");
+  }
+  double vote = 0.0;
+  for (std::size_t k = 0; k < trace.segment_count(); ++k) {
+    const Vec2 into_wall = (normal.row(static_cast<Eigen::Index>(k)) + normal.row(static_cast<Eigen::Index>(k + 1))).transpose();
+    const Vec2 e = trace.points[k + 1] - trace.points[k];
+    vote -= Vec2(-e.y(), e.x()).dot(into_wall);  // left normal against the flow's normal
+  }
+  if (vote == 0.0) file.fail(group + "/normal", "cannot tell on which side of the wall the fluid is");
+  return vote > 0.0 ? 1.0 : -1.0;
+}
+
 }  // namespace
 
 Model read_model(const std::filesystem::path& file) {
@@ -63,61 +86,24 @@ FlowTraces read_flow_traces(const std::filesystem::path& file,
   const h5::Reader reader = formats::open_checked(file, "flow");
   h5::MatrixXdR reference_points;
   if (!reference_mesh.empty()) {
-    const h5::Reader reference = formats::open_checked(reference_mesh, "flowmesh");
-    reference_points = reference.read_matrix("/mesh/points", std::nullopt, 2);
+    const formats::Mesh reference = formats::read_mesh(formats::open_checked(reference_mesh, "flowmesh"));
+    reference_points = reference.points;
   }
   FlowTraces out;
   out.header = formats::read_header(reader);
-  const h5::MatrixXiR triangles = reader.read_index_matrix("/mesh/cells/triangle", std::nullopt, 3, 0,
-                                                          std::numeric_limits<std::int64_t>::max());
-  const h5::MatrixXiR quads = reader.read_index_matrix("/mesh/cells/quad", std::nullopt, 4, 0,
-                                                      std::numeric_limits<std::int64_t>::max());
-  const h5::MatrixXdR mesh_points = reader.read_matrix("/mesh/points", std::nullopt, 2);
-  const auto node_count = static_cast<std::int64_t>(mesh_points.rows());
-  // Centroid of the cell owning each wall edge (key: sorted node pair), to orient the traces.
-  std::map<std::pair<std::int64_t, std::int64_t>, Vec2> wall_edges;
-  std::vector<std::string> names = reader.is_group("/walls") ? reader.children("/walls")
-                                                             : std::vector<std::string>{};
-  std::map<std::string, std::vector<std::int64_t>> trace_nodes;
-  for (const std::string& name : names) {
-    const std::string g = "/walls/" + name;
-    trace_nodes[name] = reader.read_index_vector(g + "/node", std::nullopt, 0, node_count);
-    const auto& nodes = trace_nodes[name];
-    for (std::size_t k = 0; k + 1 < nodes.size(); ++k) {
-      wall_edges[{std::min(nodes[k], nodes[k + 1]), std::max(nodes[k], nodes[k + 1])}] = Vec2(NAN, NAN);
-    }
-  }
-  auto visit = [&](const auto& cells) {
-    for (Eigen::Index c = 0; c < cells.rows(); ++c) {
-      Vec2 centroid = Vec2::Zero();
-      for (Eigen::Index a = 0; a < cells.cols(); ++a) {
-        centroid += Vec2(mesh_points(cells(c, a), 0), mesh_points(cells(c, a), 1));
-      }
-      centroid /= static_cast<double>(cells.cols());
-      for (Eigen::Index a = 0; a < cells.cols(); ++a) {
-        const std::int64_t n0 = cells(c, a), n1 = cells(c, (a + 1) % cells.cols());
-        auto it = wall_edges.find({std::min(n0, n1), std::max(n0, n1)});
-        if (it != wall_edges.end()) it->second = centroid;
-      }
-    }
-  };
-  visit(triangles);
-  visit(quads);
-
+  const auto node_count = static_cast<std::int64_t>(reader.read_matrix("/mesh/points", std::nullopt, 2).rows());
+  const std::vector<std::string> names =
+      reader.is_group("/walls") ? reader.children("/walls") : std::vector<std::string>{};
   for (const std::string& name : names) {
     const std::string g = "/walls/" + name;
     const std::string b = "/mesh/boundaries/" + name;
-    if (!reader.exists(b) || !reader.has_attr(b, "flap")) {
+    if (!reader.exists(b) || !reader.has_attr(b, "flap") || reader.attr_string(b, "flap").empty()) {
       out.skipped.push_back(name);
       continue;
     }
     WallTrace trace;
     trace.name = name;
     trace.flap = reader.attr_string(b, "flap");
-    if (trace.flap.empty()) {
-      out.skipped.push_back(name);
-      continue;
-    }
     if (!reader.has_attr(b, "side")) reader.fail(b, "a flap wall needs a 'side' attribute (inner, outer or end)");
     trace.side = parse_side(reader, b, reader.attr_string(b, "side"));
     const std::vector<double> x = reader.read_vector(g + "/x");
@@ -130,20 +116,8 @@ FlowTraces read_flow_traces(const std::filesystem::path& file,
     } catch (const std::invalid_argument& e) {
       reader.fail(g, e.what());
     }
-    const auto& nodes = trace_nodes[name];
-    if (nodes.size() != x.size()) reader.fail(g + "/node", "length differs from /x");
-    double vote = 0.0;
-    trace.normal_sign = 1.0;
-    for (std::size_t k = 0; k + 1 < nodes.size(); ++k) {
-      const Vec2 centroid = wall_edges[{std::min(nodes[k], nodes[k + 1]), std::max(nodes[k], nodes[k + 1])}];
-      if (std::isnan(centroid.x())) reader.fail(g + "/node", "nodes " + std::to_string(nodes[k]) + ", " +
-                                                 std::to_string(nodes[k + 1]) + " are not an edge of any mesh cell");
-      const double h = (trace.points[k + 1] - trace.points[k]).norm();
-      // The outward normal of the solid points into the fluid, i.e. towards the cell.
-      vote += h * trace.outward_normal(k).dot(centroid - trace.position(k, 0.5));
-    }
-    if (vote == 0.0) reader.fail(g, "cannot tell on which side of the wall the fluid is");
-    trace.normal_sign = vote > 0.0 ? 1.0 : -1.0;
+    const std::vector<std::int64_t> nodes = reader.read_index_vector(g + "/node", x.size(), 0, node_count);
+    trace.normal_sign = fluid_side(reader, g, trace);
     if (reference_points.rows() > 0) {
       if (reference_points.rows() != node_count) {
         reader.fail("/mesh/points", std::to_string(node_count) + " nodes, but the reference mesh " +
