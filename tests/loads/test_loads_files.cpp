@@ -1,8 +1,8 @@
 // tfmb-loads end to end on files written by the tests: outputs validate against their
 // schemas, totals are printed, bad inputs exit 3 with a located message.
+#include <gtest/gtest.h>
 #include <hdf5.h>
 #include <unistd.h>
-#include <gtest/gtest.h>
 
 #include <cstdlib>
 #include <fstream>
@@ -272,17 +272,23 @@ TEST(LoadsFiles, TheWallNormalsSayWhereTheFluidIs) {
     const tf::TestFlap& flap = files.flaps[0];
     auto p = [](const Vec2&) { return 2e5; };
     auto zero = [](const Vec2&) { return 0.0; };
-    tf::write_flow(files.flow, {tf::make_trace("in", flap.name, "inner", flap.inner_wall, p, zero, fluid_side),
-                                tf::make_trace("out", flap.name, "outer", flap.outer_wall, zero, zero, -fluid_side),
-                                tf::make_trace("lower_in", "lower", "inner", files.flaps[1].inner_wall, zero, zero, 1.0),
-                                tf::make_trace("lower_out", "lower", "outer", files.flaps[1].outer_wall, zero, zero, -1.0)});
+    tf::write_flow(
+        files.flow,
+        {tf::make_trace("in", flap.name, "inner", flap.inner_wall, p, zero, fluid_side),
+         tf::make_trace("out", flap.name, "outer", flap.outer_wall, zero, zero, -fluid_side),
+         tf::make_trace("lower_in", "lower", "inner", files.flaps[1].inner_wall, zero, zero, 1.0),
+         tf::make_trace("lower_out", "lower", "outer", files.flaps[1].outer_wall, zero, zero,
+                        -1.0)});
     const auto out = files.dir / "loads.h5";
-    EXPECT_EQ(run_cli("forces " + files.flow.string() + " " + files.model.string() + " -o " + out.string()), 0);
+    EXPECT_EQ(run_cli("forces " + files.flow.string() + " " + files.model.string() + " -o " +
+                      out.string()),
+              0);
     const h5::Reader r(out);
     const h5::MatrixXdR f = r.read_matrix("/flaps/" + flap.name + "/nodal_force", std::nullopt, 3);
     return f.col(1).sum();
   };
-  const double as_given = total_y("normals-right", -1.0), reversed = total_y("normals-reversed", 1.0);
+  const double as_given = total_y("normals-right", -1.0),
+               reversed = total_y("normals-reversed", 1.0);
   EXPECT_GT(std::abs(as_given), 1e3);
   EXPECT_NEAR(reversed, -as_given, 1e-9 * std::abs(as_given));
 

@@ -1735,7 +1735,8 @@ WallTrace FlowSolver::trace_of(int curve) const {
     t.shear_stress.push_back(shear);
     t.heat_flux.push_back(heat);
     const double length = norm(normal[k]);
-    t.normal.push_back(length > 0.0 ? Vec2{normal[k].x / length, normal[k].y / length} : Vec2{0.0, 0.0});
+    t.normal.push_back(length > 0.0 ? Vec2{normal[k].x / length, normal[k].y / length}
+                                    : Vec2{0.0, 0.0});
   }
   t.node = std::move(external_node);
   return t;

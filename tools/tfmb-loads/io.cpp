@@ -36,21 +36,26 @@ h5::MatrixXdR rows3(const std::vector<Vec2>& v, bool as_3d = true) {
 // i.e. against the flow's normals, by a length-weighted vote over the segments.
 double fluid_side(const h5::Reader& file, const std::string& group, const WallTrace& trace) {
   if (!file.exists(group + "/normal")) {
-    file.fail(group, "no /normal: tfmb-loads needs each flap wall's normal (flow 1.4) to know which side "
-                     "the fluid is on; re-run tfmb-flow, or have the external flow code write it");
+    file.fail(group,
+              "no /normal: tfmb-loads needs each flap wall's normal (flow 1.4) to know which side "
+              "the fluid is on; re-run tfmb-flow, or have the external flow code write it");
   }
-  const h5::MatrixXdR normal = file.read_matrix(group + "/normal", static_cast<Eigen::Index>(trace.points.size()), 2);
+  const h5::MatrixXdR normal =
+      file.read_matrix(group + "/normal", static_cast<Eigen::Index>(trace.points.size()), 2);
   for (Eigen::Index k = 0; k < normal.rows(); ++k) {
     if (std::abs(normal.row(k).norm() - 1.0) > 1e-6)
       file.fail(group + "/normal", "row " + std::to_string(k) + " is not a unit vector");
   }
   double vote = 0.0;
   for (std::size_t k = 0; k < trace.segment_count(); ++k) {
-    const Vec2 into_wall = (normal.row(static_cast<Eigen::Index>(k)) + normal.row(static_cast<Eigen::Index>(k + 1))).transpose();
+    const Vec2 into_wall =
+        (normal.row(static_cast<Eigen::Index>(k)) + normal.row(static_cast<Eigen::Index>(k + 1)))
+            .transpose();
     const Vec2 e = trace.points[k + 1] - trace.points[k];
     vote -= Vec2(-e.y(), e.x()).dot(into_wall);  // left normal against the flow's normal
   }
-  if (vote == 0.0) file.fail(group + "/normal", "cannot tell on which side of the wall the fluid is");
+  if (vote == 0.0)
+    file.fail(group + "/normal", "cannot tell on which side of the wall the fluid is");
   return vote > 0.0 ? 1.0 : -1.0;
 }
 
@@ -86,12 +91,14 @@ FlowTraces read_flow_traces(const std::filesystem::path& file,
   const h5::Reader reader = formats::open_checked(file, "flow");
   h5::MatrixXdR reference_points;
   if (!reference_mesh.empty()) {
-    const formats::Mesh reference = formats::read_mesh(formats::open_checked(reference_mesh, "flowmesh"));
+    const formats::Mesh reference =
+        formats::read_mesh(formats::open_checked(reference_mesh, "flowmesh"));
     reference_points = reference.points;
   }
   FlowTraces out;
   out.header = formats::read_header(reader);
-  const auto node_count = static_cast<std::int64_t>(reader.read_matrix("/mesh/points", std::nullopt, 2).rows());
+  const auto node_count =
+      static_cast<std::int64_t>(reader.read_matrix("/mesh/points", std::nullopt, 2).rows());
   const std::vector<std::string> names =
       reader.is_group("/walls") ? reader.children("/walls") : std::vector<std::string>{};
   for (const std::string& name : names) {
@@ -116,7 +123,8 @@ FlowTraces read_flow_traces(const std::filesystem::path& file,
     } catch (const std::invalid_argument& e) {
       reader.fail(g, e.what());
     }
-    const std::vector<std::int64_t> nodes = reader.read_index_vector(g + "/node", x.size(), 0, node_count);
+    const std::vector<std::int64_t> nodes =
+        reader.read_index_vector(g + "/node", x.size(), 0, node_count);
     trace.normal_sign = fluid_side(reader, g, trace);
     if (reference_points.rows() > 0) {
       if (reference_points.rows() != node_count) {
