@@ -82,6 +82,11 @@ fs::path write_loads(const fs::path& dir, double q) {
   std::vector<std::vector<double>> f;
   for (int i = 0; i < 4; ++i) f.push_back({0.0, -q, 0.0});
   set_matrix(doc.datasets["/flaps/sample/distributed_force"], f);
+  // The consistent nodal forces of the uniform load on the 3 elements (linear shape functions:
+  // q h / 2 at the ends, q h inside), what the beam applies.
+  const double h = kLength / 3.0;
+  set_matrix(doc.datasets["/flaps/sample/nodal_force"],
+             {{0.0, -q * h / 2, 0.0}, {0.0, -q * h, 0.0}, {0.0, -q * h, 0.0}, {0.0, -q * h / 2, 0.0}});
   const std::vector<std::vector<double>> zero(4, std::vector<double>(3, 0.0));
   set_matrix(doc.datasets["/flaps/sample/distributed_moment"], zero);
   set_matrix(doc.datasets["/flaps/sample/nodal_moment"], zero);
@@ -147,9 +152,12 @@ void add_far_support(const fs::path& model, const std::string& kind) {
 
 }  // namespace
 
-// Uniform load on a cantilever: tip deflection q L^4 / (8 EI) + q L^2 / (2 GA). The load is
-// small (tip rotation ~1e-6), so the geometrically nonlinear answer equals the linear one to ~1e-12;
-// three quadratic elements are exact at the nodes for this polynomial solution up to ~1e-6.
+// Uniform load on a cantilever as the loads stage gives it, consistent nodal forces P_i at the
+// flap nodes a_i: tip deflection sum P_i a_i^2 (3 L - a_i) / (6 EI) + P_i a_i / GA (superposed
+// point loads; 3.7 % above the continuous q L^4 / (8 EI) + q L^2 / (2 GA) with three elements,
+// the load discretisation's O(h^2)). The load is small (tip rotation ~1e-6), so the geometrically
+// nonlinear answer equals the linear one to ~1e-12; the quadratic elements are exact at the nodes
+// for the piecewise-cubic solution up to ~1e-6.
 TEST(Stage, CantileverUnderUniformLoadWritesValidStructure) {
   const fs::path dir = scratch("uniform");
   beam::Options o;
@@ -164,7 +172,13 @@ TEST(Stage, CantileverUnderUniformLoadWritesValidStructure) {
   const h5::MatrixXdR u = r.read_matrix("/fields/point/displacement");
   const auto tip_nodes = r.read_index_vector("/flaps/sample/nodes", 7, 0, u.rows());
   const auto tip = static_cast<Eigen::Index>(tip_nodes.back());
-  const double exact = q * std::pow(kLength, 4) / (8 * kEI) + q * kLength * kLength / (2 * kGA);
+  double exact = 0.0;
+  for (int i = 1; i <= 3; ++i) {
+    const double a = i * kLength / 3.0, p = q * kLength / 3.0 * (i == 3 ? 0.5 : 1.0);
+    exact += p * a * a * (3.0 * kLength - a) / (6.0 * kEI) + p * a / kGA;
+  }
+  const double continuous = q * std::pow(kLength, 4) / (8 * kEI) + q * kLength * kLength / (2 * kGA);
+  EXPECT_NEAR(exact / continuous, 1.037, 1e-3);  // the nodal loads are the uniform load's
   EXPECT_NEAR(-u(tip, 1), exact, 1e-5 * exact);
   // Follower load (the default): the same at this small rotation.
   o.dead_loads = false;
@@ -487,6 +501,7 @@ TEST(Stage, NodalMomentsAndPointLoads) {
   const double m_tip = 1e-3, p_tip = 2e-3;
   mom[3][2] = m_tip;
   set_matrix(doc.datasets["/flaps/sample/distributed_force"], zero);
+  set_matrix(doc.datasets["/flaps/sample/nodal_force"], zero);
   set_matrix(doc.datasets["/flaps/sample/distributed_moment"], zero);
   set_matrix(doc.datasets["/flaps/sample/nodal_moment"], mom);
   o.loads = dir / "loads.h5";

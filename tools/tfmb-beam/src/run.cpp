@@ -223,35 +223,31 @@ FileModel read_model(const Options& options) {
     m.nodal_loads.push_back(l);
   }
 
-  // Loads: distributed force per unit length at the flap nodes, linear between them; the
-  // element average goes on each quadratic element (exact resultant).
+  // Loads: the file's consistent nodal forces and moments at the flap nodes (the end nodes of
+  // the quadratic elements), what tfmb-loads integrated from the wall traces (formats/loads.md:
+  // "prefer nodal_force/nodal_moment in the beam"); the distributed forces beside them are a
+  // projection for plotting and are not read.
   if (!options.loads.empty()) {
     const h5::Reader l = formats::open_checked(options.loads, "loads");
     for (const auto& name : l.children("/flaps")) {
       const std::string g = "/flaps/" + name;
       if (!fm.flap_elements.count(name)) l.fail(g, "flap '" + name + "' is not in the model " + options.model.string());
-      const auto& els = fm.flap_elements[name];
-      const h5::MatrixXdR q = l.read_matrix(g + "/distributed_force", static_cast<Eigen::Index>(els.size() + 1), 3);
-      for (size_t e = 0; e < els.size(); ++e) {
-        DistributedLoad d;
-        d.element = els[e];
-        const Eigen::Vector3d avg = 0.5 * (q.row(e) + q.row(e + 1)).transpose();
-        d.follower = !options.dead_loads;
-        // Follower loads are given in the section frame of the reference configuration.
-        d.force_per_length = d.follower ? Eigen::Vector3d(m.nodes[m.elements[els[e]].nodes[1]].frame.transpose() * avg) : avg;
-        m.distributed_loads.push_back(d);
-      }
-      // Distributed moments (wall offset from the reference line) as the file's consistent nodal
-      // moments at the flap nodes (the end nodes of the quadratic elements).
-      const h5::MatrixXdR mom = l.read_matrix(g + "/nodal_moment", static_cast<Eigen::Index>(els.size() + 1), 3);
-      for (Eigen::Index i = 0; i < mom.rows(); ++i) {
-        if (mom.row(i).norm() == 0.0) continue;
-        NodalLoad nl;
-        nl.node = fm.flap_nodes[name][2 * i];
-        nl.moment = mom.row(i).transpose();
-        nl.follower = !options.dead_loads;
-        if (nl.follower) nl.moment = m.nodes[nl.node].frame.transpose() * nl.moment;
-        m.nodal_loads.push_back(nl);
+      const auto rows = static_cast<Eigen::Index>(fm.flap_elements[name].size() + 1);
+      const h5::MatrixXdR force = l.read_matrix(g + "/nodal_force", rows, 3);
+      const h5::MatrixXdR moment = l.read_matrix(g + "/nodal_moment", rows, 3);
+      for (Eigen::Index i = 0; i < rows; ++i) {
+        if (force.row(i).norm() == 0.0 && moment.row(i).norm() == 0.0) continue;
+        NodalLoad load;
+        load.node = fm.flap_nodes[name][static_cast<std::size_t>(2 * i)];
+        load.force = force.row(i).transpose();
+        load.moment = moment.row(i).transpose();
+        // Follower loads (pressure turns with the wall) are given in the node's reference frame.
+        load.follower = !options.dead_loads;
+        if (load.follower) {
+          load.force = m.nodes[load.node].frame.transpose() * load.force;
+          load.moment = m.nodes[load.node].frame.transpose() * load.moment;
+        }
+        m.nodal_loads.push_back(load);
       }
     }
   }
