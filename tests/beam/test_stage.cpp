@@ -85,8 +85,9 @@ fs::path write_loads(const fs::path& dir, double q) {
   // The consistent nodal forces of the uniform load on the 3 elements (linear shape functions:
   // q h / 2 at the ends, q h inside), what the beam applies.
   const double h = kLength / 3.0;
-  set_matrix(doc.datasets["/flaps/sample/nodal_force"],
-             {{0.0, -q * h / 2, 0.0}, {0.0, -q * h, 0.0}, {0.0, -q * h, 0.0}, {0.0, -q * h / 2, 0.0}});
+  set_matrix(
+      doc.datasets["/flaps/sample/nodal_force"],
+      {{0.0, -q * h / 2, 0.0}, {0.0, -q * h, 0.0}, {0.0, -q * h, 0.0}, {0.0, -q * h / 2, 0.0}});
   const std::vector<std::vector<double>> zero(4, std::vector<double>(3, 0.0));
   set_matrix(doc.datasets["/flaps/sample/distributed_moment"], zero);
   set_matrix(doc.datasets["/flaps/sample/nodal_moment"], zero);
@@ -177,7 +178,8 @@ TEST(Stage, CantileverUnderUniformLoadWritesValidStructure) {
     const double a = i * kLength / 3.0, p = q * kLength / 3.0 * (i == 3 ? 0.5 : 1.0);
     exact += p * a * a * (3.0 * kLength - a) / (6.0 * kEI) + p * a / kGA;
   }
-  const double continuous = q * std::pow(kLength, 4) / (8 * kEI) + q * kLength * kLength / (2 * kGA);
+  const double continuous =
+      q * std::pow(kLength, 4) / (8 * kEI) + q * kLength * kLength / (2 * kGA);
   EXPECT_NEAR(exact / continuous, 1.037, 1e-3);  // the nodal loads are the uniform load's
   EXPECT_NEAR(-u(tip, 1), exact, 1e-5 * exact);
   // Follower load (the default): the same at this small rotation.

@@ -236,7 +236,8 @@ FileModel read_model(const Options& options) {
       const h5::MatrixXdR force = l.read_matrix(g + "/nodal_force", rows, 3);
       const h5::MatrixXdR moment = l.read_matrix(g + "/nodal_moment", rows, 3);
       for (Eigen::Index i = 0; i < rows; ++i) {
-        if (force.row(i).norm() == 0.0 && moment.row(i).norm() == 0.0) continue;
+        if (force.row(i).norm() == 0.0 && moment.row(i).norm() == 0.0)
+          continue;
         NodalLoad load;
         load.node = fm.flap_nodes[name][static_cast<std::size_t>(2 * i)];
         load.force = force.row(i).transpose();
