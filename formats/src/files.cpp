@@ -120,24 +120,39 @@ std::filesystem::path write_xdmf_sidecar(const std::filesystem::path& h5_file) {
   std::filesystem::path sidecar = h5_file;
   sidecar.replace_extension(".xdmf");
   const std::string data_file = h5_file.filename().string();
-  const auto points = file.info("/mesh/points");
-  const auto triangles = file.info("/mesh/cells/triangle");
-  const auto quads = file.info("/mesh/cells/quad");
-  const auto topology = file.info("/mesh/topology_xdmf_mixed");
-  const std::size_t cells = triangles.shape.at(0) + quads.shape.at(0);
-
+  auto item = [&](const std::string& path, const std::string& dimensions, const char* type) {
+    return "        <DataItem Dimensions=\"" + dimensions + "\" NumberType=\"" + type +
+           "\" Precision=\"8\" Format=\"HDF\">" + data_file + ":" + path + "</DataItem>\n";
+  };
   std::ostringstream xml;
   xml << "<?xml version=\"1.0\" ?>\n"
       << "<Xdmf Version=\"3.0\">\n  <Domain>\n"
-      << "    <Grid Name=\"" << h5_file.stem().string() << "\" GridType=\"Uniform\">\n"
-      << "      <Topology TopologyType=\"Mixed\" NumberOfElements=\"" << cells << "\">\n"
-      << "        <DataItem Dimensions=\"" << topology.shape.at(0)
-      << "\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">" << data_file
-      << ":/mesh/topology_xdmf_mixed</DataItem>\n      </Topology>\n"
-      << "      <Geometry GeometryType=\"XY\">\n"
-      << "        <DataItem Dimensions=\"" << points.shape.at(0)
-      << " 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << data_file
-      << ":/mesh/points</DataItem>\n      </Geometry>\n";
+      << "    <Grid Name=\"" << h5_file.stem().string() << "\" GridType=\"Uniform\">\n";
+  std::size_t point_count = 0, cells = 0;
+  if (file.exists("/mesh/points")) {
+    // A 2D mesh of triangles and quads (flowmesh, solidmesh, flow, thermal).
+    const auto points = file.info("/mesh/points");
+    const auto triangles = file.info("/mesh/cells/triangle");
+    const auto quads = file.info("/mesh/cells/quad");
+    const auto topology = file.info("/mesh/topology_xdmf_mixed");
+    point_count = points.shape.at(0);
+    cells = triangles.shape.at(0) + quads.shape.at(0);
+    xml << "      <Topology TopologyType=\"Mixed\" NumberOfElements=\"" << cells << "\">\n"
+        << item("/mesh/topology_xdmf_mixed", std::to_string(topology.shape.at(0)), "Int")
+        << "      </Topology>\n      <Geometry GeometryType=\"XY\">\n"
+        << item("/mesh/points", std::to_string(point_count) + " 2", "Float") << "      </Geometry>\n";
+  } else {
+    // The beams as polylines of display segments (structure).
+    const auto points = file.info("/beam/points");
+    const auto segments = file.info("/beam/segments");
+    point_count = points.shape.at(0);
+    cells = segments.shape.at(0);
+    xml << "      <Topology TopologyType=\"Polyline\" NodesPerElement=\"2\" NumberOfElements=\"" << cells
+        << "\">\n"
+        << item("/beam/segments", std::to_string(cells) + " 2", "Int")
+        << "      </Topology>\n      <Geometry GeometryType=\"XYZ\">\n"
+        << item("/beam/points", std::to_string(point_count) + " 3", "Float") << "      </Geometry>\n";
+  }
   auto add_fields = [&](const std::string& group, const char* center, std::size_t expected_rows) {
     if (!file.is_group(group)) return;
     for (const auto& name : file.children(group)) {
@@ -157,7 +172,7 @@ std::filesystem::path write_xdmf_sidecar(const std::filesystem::path& h5_file) {
           << "</DataItem>\n      </Attribute>\n";
     }
   };
-  add_fields("/fields/point", "Node", points.shape.at(0));
+  add_fields("/fields/point", "Node", point_count);
   add_fields("/fields/cell", "Cell", cells);
   xml << "    </Grid>\n  </Domain>\n</Xdmf>\n";
 

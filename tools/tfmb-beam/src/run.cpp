@@ -295,34 +295,6 @@ FileModel read_model(const Options& options) {
 
 namespace {
 
-/// XDMF 3 sidecar "<output minus .h5>.xdmf" for ParaView and meshio: the beam as a polyline of
-/// display segments, nodal displacement and rotation, sectional strain and force per segment.
-void write_structure_xdmf(const std::filesystem::path& h5file, std::size_t n_points, std::size_t n_segments) {
-  std::filesystem::path xdmf = h5file;
-  xdmf.replace_extension(".xdmf");
-  const std::string h5 = h5file.filename().string();
-  std::ofstream out(xdmf.string() + ".tmp");
-  auto item = [&](const std::string& path, const std::string& dims, const char* type, int precision) {
-    return "<DataItem Dimensions=\"" + dims + "\" NumberType=\"" + type + "\" Precision=\"" + std::to_string(precision) +
-           "\" Format=\"HDF\">" + h5 + ":" + path + "</DataItem>";
-  };
-  const std::string np = std::to_string(n_points), ns = std::to_string(n_segments);
-  out << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n<Domain>\n<Grid Name=\"beam\" GridType=\"Uniform\">\n"
-      << "<Topology TopologyType=\"Polyline\" NodesPerElement=\"2\" NumberOfElements=\"" << ns << "\">"
-      << item("/beam/segments", ns + " 2", "Int", 8) << "</Topology>\n"
-      << "<Geometry GeometryType=\"XYZ\">" << item("/beam/points", np + " 3", "Float", 8) << "</Geometry>\n";
-  for (const char* f : {"displacement", "rotation"})
-    out << "<Attribute Name=\"" << f << "\" AttributeType=\"Vector\" Center=\"Node\">"
-        << item(std::string("/fields/point/") + f, np + " 3", "Float", 8) << "</Attribute>\n";
-  for (const char* f : {"sectional_strain", "sectional_force"})
-    out << "<Attribute Name=\"" << f << "\" AttributeType=\"Matrix\" Center=\"Cell\">"
-        << item(std::string("/fields/cell/") + f, ns + " 6", "Float", 8) << "</Attribute>\n";
-  out << "</Grid>\n</Domain>\n</Xdmf>\n";
-  out.close();
-  if (!out) throw InternalError("cannot write " + xdmf.string());
-  std::filesystem::rename(xdmf.string() + ".tmp", xdmf);
-}
-
 void write_structure(const Options& options, const FileModel& fm, const Assembly& asmb, const State& state,
                      const std::string& analysis, bool converged, const std::vector<double>& times,
                      const std::vector<std::vector<Eigen::Vector3d>>& history, const ModalResult* modes,
@@ -452,7 +424,7 @@ void write_structure(const Options& options, const FileModel& fm, const Assembly
   if (!options.materials.empty()) prov.inputs.push_back(options.materials);
   formats::write_provenance(w, prov);
   w.commit();
-  write_structure_xdmf(options.output, static_cast<std::size_t>(n), static_cast<std::size_t>(ns));
+  formats::write_xdmf_sidecar(options.output);
 }
 
 }  // namespace

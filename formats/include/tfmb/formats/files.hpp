@@ -57,9 +57,10 @@ void write_mesh(h5::Writer& file, const Mesh& mesh);
 // Reads /mesh of a file already validated against its schema.
 Mesh read_mesh(const h5::Reader& file);
 
-// Writes "<file minus .h5>.xdmf" next to a committed mesh-bearing file: one Uniform grid with
-// Mixed topology, every /fields/point/* as a Node attribute and /fields/cell/* as Cell attribute.
-// Returns the sidecar path.
+// Writes "<file minus .h5>.xdmf" next to a committed file that has a grid: one Uniform grid with
+// Mixed topology for a /mesh (triangles and quads), or Polyline topology for /beam/points and
+// /beam/segments (structure files); every /fields/point/* as a Node attribute and /fields/cell/*
+// as a Cell attribute. Returns the sidecar path.
 std::filesystem::path write_xdmf_sidecar(const std::filesystem::path& h5_file);
 
 // Generic in-memory image of a file: every group, dataset and attribute.
