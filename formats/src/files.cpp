@@ -140,18 +140,20 @@ std::filesystem::path write_xdmf_sidecar(const std::filesystem::path& h5_file) {
     xml << "      <Topology TopologyType=\"Mixed\" NumberOfElements=\"" << cells << "\">\n"
         << item("/mesh/topology_xdmf_mixed", std::to_string(topology.shape.at(0)), "Int")
         << "      </Topology>\n      <Geometry GeometryType=\"XY\">\n"
-        << item("/mesh/points", std::to_string(point_count) + " 2", "Float") << "      </Geometry>\n";
+        << item("/mesh/points", std::to_string(point_count) + " 2", "Float")
+        << "      </Geometry>\n";
   } else {
     // The beams as polylines of display segments (structure).
     const auto points = file.info("/beam/points");
     const auto segments = file.info("/beam/segments");
     point_count = points.shape.at(0);
     cells = segments.shape.at(0);
-    xml << "      <Topology TopologyType=\"Polyline\" NodesPerElement=\"2\" NumberOfElements=\"" << cells
-        << "\">\n"
+    xml << "      <Topology TopologyType=\"Polyline\" NodesPerElement=\"2\" NumberOfElements=\""
+        << cells << "\">\n"
         << item("/beam/segments", std::to_string(cells) + " 2", "Int")
         << "      </Topology>\n      <Geometry GeometryType=\"XYZ\">\n"
-        << item("/beam/points", std::to_string(point_count) + " 3", "Float") << "      </Geometry>\n";
+        << item("/beam/points", std::to_string(point_count) + " 3", "Float")
+        << "      </Geometry>\n";
   }
   auto add_fields = [&](const std::string& group, const char* center, std::size_t expected_rows) {
     if (!file.is_group(group)) return;
