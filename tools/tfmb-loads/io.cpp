@@ -67,18 +67,7 @@ Model read_model(const std::filesystem::path& file) {
   model.file = file;
   model.header.geometry = in.geometry;
   model.header.depth = in.depth;
-  for (const formats::Flap& f : in.flaps) {
-    ModelFlap flap;
-    flap.name = f.name;
-    flap.material = f.material;
-    flap.thickness = f.thickness;
-    flap.width = f.width;
-    flap.reference_curve = f.reference_curve;
-    flap.reference_geometry = f.reference_geometry;
-    flap.inner_wall = f.inner_wall;
-    flap.outer_wall = f.outer_wall;
-    model.flaps.push_back(std::move(flap));
-  }
+  model.flaps = in.flaps;
   if (model.flaps.empty())
     in.fail("/flaps", "no flaps: nothing to load");
   std::sort(model.flaps.begin(), model.flaps.end(),

@@ -13,21 +13,13 @@
 #include "mapping.hpp"
 #include "trace.hpp"
 #include "tfmb/formats/files.hpp"
+#include "tfmb/formats/model.hpp"
 
 namespace tfmb::loads {
 
-struct ModelFlap {
-  std::string name;
-  std::string material;
-  double thickness = 0.0;            // [m]
-  double width = 0.0;                // [m]
-  std::vector<Vec2> reference_curve; // beam nodes [m]
-  // The reference line at full geometric resolution (model 2.x); the beam nodes and any
-  // intermediate nodes of higher-order beam elements lie on it. Empty if the model has none.
-  std::vector<Vec2> reference_geometry;
-  std::vector<Vec2> inner_wall;      // [m]
-  std::vector<Vec2> outer_wall;      // [m]
-};
+// A flap of the model: formats' type as it is (name, material, thickness, width, beam nodes, the
+// reference line at full resolution, inner and outer walls).
+using ModelFlap = formats::Flap;
 
 struct Model {
   std::filesystem::path file;

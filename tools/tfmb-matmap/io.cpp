@@ -53,13 +53,9 @@ Model read_model(const std::filesystem::path& file) {
   model.header.depth = in.depth;
   for (const formats::Flap& f : in.flaps) {
     ModelFlap flap;
-    flap.name = f.name;
-    flap.material = f.material;
-    flap.thickness = f.thickness;
-    flap.width = f.width;
+    static_cast<formats::Flap&>(flap) = f;
     const std::string g = "/flaps/" + f.name;
     const auto& curve = f.reference_curve;
-    flap.elements = curve.size() - 1;
     // Which side the outer wall is on: from the middle of the reference curve to the nearest
     // outer wall point, against the left normal there.
     const std::size_t j = (curve.size() - 1) / 2;

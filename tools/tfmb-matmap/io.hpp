@@ -10,17 +10,14 @@
 #include "material_table.hpp"
 #include "section.hpp"
 #include "tfmb/formats/files.hpp"
+#include "tfmb/formats/model.hpp"
 
 namespace tfmb::matmap {
 
 MaterialDatabase read_material_db(const std::filesystem::path& file);
 
-struct ModelFlap {
-  std::string name;
-  std::string material;
-  double thickness = 0.0;  // [m]
-  double width = 0.0;      // [m]
-  std::size_t elements = 0;
+// A flap of the model (formats' type) and which side its outer wall is on.
+struct ModelFlap : formats::Flap {
   // +1 if the outer wall lies to the left of the reference direction (start to end), -1 if
   // to the right (from the model's walls).
   int outer_normal_sign = 1;

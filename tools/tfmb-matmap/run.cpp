@@ -67,7 +67,7 @@ Result run(const Options& options, const Logger& logger, std::ostream& out) {
     }
     const ThermalFlap& tf = it->second;
     const std::string location = tfile + ": /beam/" + mf.name + "/mean_temperature";
-    if (tf.mean_temperature.size() != mf.elements) {
+    if (tf.mean_temperature.size() != static_cast<std::size_t>(mf.elements)) {
       throw BadInput(location + ": " + std::to_string(tf.mean_temperature.size()) + " elements, but flap '" +
                      mf.name + "' of " + options.model_file.string() + " has " + std::to_string(mf.elements) +
                      " (mismatched model and thermal files)");
@@ -116,7 +116,7 @@ Result run(const Options& options, const Logger& logger, std::ostream& out) {
     ElementProperties& e = flap.elements;
     const double t_ref = material->reference_temperature;
     const double t0 = flap.stress_free_temperature;
-    for (std::size_t k = 0; k < mf.elements; ++k) {
+    for (std::size_t k = 0; k < static_cast<std::size_t>(mf.elements); ++k) {
       const double t = tf.mean_temperature[k];
       const double dt = tf.delta_temperature[k];
       ElementLookup lookup{*material, options.clamp, {}, location + "[" + std::to_string(k) + "]"};
