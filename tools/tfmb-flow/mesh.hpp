@@ -1,6 +1,6 @@
 // In-memory mixed triangle/quad mesh of a 2D flow domain, the input of the median-dual
 // construction. Kept free of any file format: the executable fills it from flowmesh.h5,
-// the tests fill it from the generators in mesh_generate.hpp.
+// the tests fill it from the generators in tests/flow/mesh_generate.hpp.
 #pragma once
 
 #include <array>

@@ -4,7 +4,6 @@
 #include <numeric>
 #include <sstream>
 
-#include "exact_nozzle.hpp"
 #include "tfmb/common/cli.hpp"
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
