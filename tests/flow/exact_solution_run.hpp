@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "solver.hpp"
+#include "tfmb-flow/solver.hpp"
 
 namespace tfmb::flow::exact_solution_run {
 

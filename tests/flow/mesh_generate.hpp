@@ -6,7 +6,7 @@
 #include <functional>
 #include <string>
 
-#include "mesh.hpp"
+#include "tfmb-flow/mesh.hpp"
 
 namespace tfmb::flow {
 

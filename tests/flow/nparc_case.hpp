@@ -8,7 +8,7 @@
 
 #include "exact_nozzle.hpp"
 #include "mesh_generate.hpp"
-#include "solver.hpp"
+#include "tfmb-flow/solver.hpp"
 
 namespace tfmb::flow::nparc {
 

@@ -29,7 +29,7 @@
 
 #include "exact_nozzle.hpp"
 #include "mesh_generate.hpp"
-#include "solver.hpp"
+#include "tfmb-flow/solver.hpp"
 
 using namespace tfmb::flow;
 

@@ -24,7 +24,7 @@
 #include <random>
 
 #include "mesh_generate.hpp"
-#include "solver.hpp"
+#include "tfmb-flow/solver.hpp"
 
 using namespace tfmb::flow;
 

@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "flux_roe.hpp"
+#include "tfmb-flow/flux_roe.hpp"
 
 using namespace tfmb::flow;
 

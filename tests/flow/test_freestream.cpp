@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "solver.hpp"
+#include "tfmb-flow/solver.hpp"
 #include "test_meshes.hpp"
 
 using namespace tfmb::flow;

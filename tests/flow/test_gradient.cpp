@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "gradient_lsq.hpp"
-#include "mesh_dual.hpp"
+#include "tfmb-flow/gradient_lsq.hpp"
+#include "tfmb-flow/mesh_dual.hpp"
 #include "mesh_generate.hpp"
 #include "test_meshes.hpp"
 

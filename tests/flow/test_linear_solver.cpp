@@ -5,7 +5,7 @@
 #include <random>
 #include <stdexcept>
 
-#include "linear_solver.hpp"
+#include "tfmb-flow/linear_solver.hpp"
 
 using namespace tfmb::flow;
 

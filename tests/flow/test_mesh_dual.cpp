@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "mesh_dual.hpp"
+#include "tfmb-flow/mesh_dual.hpp"
 #include "test_meshes.hpp"
 
 using namespace tfmb::flow;

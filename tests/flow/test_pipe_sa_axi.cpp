@@ -29,8 +29,8 @@
 #include <cstdlib>
 
 #include "mesh_generate.hpp"
-#include "turbulence_sa.hpp"
-#include "solver.hpp"
+#include "tfmb-flow/turbulence_sa.hpp"
+#include "tfmb-flow/solver.hpp"
 
 using namespace tfmb::flow;
 

@@ -9,7 +9,7 @@
 
 #include <cmath>
 
-#include "solver.hpp"
+#include "tfmb-flow/solver.hpp"
 
 using namespace tfmb::flow;
 

@@ -10,7 +10,7 @@
 #include <cstdio>
 
 #include "mesh_generate.hpp"
-#include "solver.hpp"
+#include "tfmb-flow/solver.hpp"
 
 using namespace tfmb::flow;
 

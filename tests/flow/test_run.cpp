@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "nparc_case.hpp"
-#include "run.hpp"
+#include "tfmb-flow/run.hpp"
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
 #include "tfmb/formats/files.hpp"

@@ -14,7 +14,7 @@
 
 #include "exact_solution_run.hpp"
 #include "mesh_generate.hpp"
-#include "solver.hpp"
+#include "tfmb-flow/solver.hpp"
 
 using namespace tfmb::flow;
 

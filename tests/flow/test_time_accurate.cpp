@@ -10,7 +10,7 @@
 #include <cmath>
 
 #include "mesh_generate.hpp"
-#include "time_accurate.hpp"
+#include "tfmb-flow/time_accurate.hpp"
 
 using namespace tfmb::flow;
 

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "turbulence_sa.hpp"
-#include "wall_distance.hpp"
+#include "tfmb-flow/turbulence_sa.hpp"
+#include "tfmb-flow/wall_distance.hpp"
 
 using namespace tfmb::flow;
 
