@@ -10,6 +10,7 @@
 #include "material_table.hpp"
 #include "section.hpp"
 #include "tfmb/formats/files.hpp"
+#include "tfmb/formats/materials.hpp"
 #include "tfmb/formats/model.hpp"
 
 namespace tfmb::matmap {
@@ -35,28 +36,9 @@ struct ThermalFlap {
 };
 std::map<std::string, ThermalFlap> read_thermal(const std::filesystem::path& file);
 
-struct ElementProperties {
-  std::vector<double> temperature, delta_temperature, youngs_modulus, shear_modulus, poisson_ratio,
-      thermal_expansion, density, yield_strength, ultimate_strength, allowable_strain, thermal_strain,
-      thermal_strain_inner, thermal_strain_outer, thermal_curvature;
-  std::vector<Matrix6> section_stiffness, section_mass;
-  std::vector<std::int64_t> clamped;
-};
-
-struct MaterialsFlap {
-  std::string name;
-  std::string material;        // database name
-  std::string material_given;  // as the model names it
-  double thickness = 0.0, width = 0.0;
-  double reference_temperature = 0.0;    // of alpha_mean [K]
-  double stress_free_temperature = 0.0;  // [K]
-  int outer_normal_sign = 1;             // see ModelFlap
-  std::string shear_modulus_basis, allowable_strain_basis;
-  bool has_strength = true;
-  ElementProperties elements;
-};
-
-void write_materials(const std::filesystem::path& file, const formats::Header& header,
-                     const std::vector<MaterialsFlap>& flaps, const formats::Provenance& provenance);
+// The materials file kind's types and writer (formats/materials.hpp).
+using ElementProperties = formats::MaterialElements;
+using formats::MaterialsFlap;
+using formats::write_materials;
 
 }  // namespace tfmb::matmap

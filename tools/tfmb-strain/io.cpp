@@ -7,6 +7,7 @@
 
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
+#include "tfmb/formats/materials.hpp"
 #include "tfmb/formats/schema.hpp"
 
 namespace tfmb::strain {
@@ -58,34 +59,25 @@ Structure read_structure(const std::filesystem::path& file) {
 }
 
 std::map<std::string, MaterialsFlap> read_materials(const std::filesystem::path& file) {
-  const h5::Reader reader = formats::open_checked(file, "materials");
   std::map<std::string, MaterialsFlap> out;
-  for (const std::string& name : reader.children("/flaps")) {
-    const std::string g = "/flaps/" + name;
+  for (const formats::MaterialsFlap& in : formats::read_materials(file).flaps) {
+    const formats::MaterialElements& e = in.elements;
     MaterialsFlap f;
-    f.thickness = reader.attr_f64(g, "thickness");
-    f.outer_normal_sign = static_cast<int>(reader.attr_i64(g, "outer_normal_sign"));
-    f.material = reader.attr_string(g, "material");
-    f.temperature = reader.read_vector(g + "/temperature");
-    const std::size_t ne = f.temperature.size();
-    f.allowable_strain = reader.read_vector(g + "/allowable_strain", ne);
-    f.thermal_strain_inner = reader.read_vector(g + "/thermal_strain_inner", ne);
-    f.thermal_strain_outer = reader.read_vector(g + "/thermal_strain_outer", ne);
-    f.thermal_strain = reader.read_vector(g + "/thermal_strain", ne);
-    f.thermal_curvature = reader.read_vector(g + "/thermal_curvature", ne);
-    std::vector<std::size_t> shape;
-    const std::vector<double> k = reader.read_f64(g + "/section_stiffness", &shape);
-    for (std::size_t e = 0; e < ne; ++e) {
-      f.axial_stiffness.push_back(k[e * 36 + 0]);
-      f.bending_stiffness.push_back(k[e * 36 + 35]);
+    f.thickness = in.thickness;
+    f.outer_normal_sign = in.outer_normal_sign;
+    f.material = in.material;
+    f.temperature = e.temperature;
+    f.allowable_strain = e.allowable_strain;
+    f.thermal_strain_inner = e.thermal_strain_inner;
+    f.thermal_strain_outer = e.thermal_strain_outer;
+    f.thermal_strain = e.thermal_strain;
+    f.thermal_curvature = e.thermal_curvature;
+    for (const auto& k : e.section_stiffness) {
+      f.axial_stiffness.push_back(k(0, 0));
+      f.bending_stiffness.push_back(k(5, 5));
     }
-    f.clamped = reader.read_index_vector(g + "/clamped", ne, 0, 2);
-    for (std::size_t e = 0; e < ne; ++e) {
-      if (!(f.allowable_strain[e] > 0.0)) {
-        reader.fail(g + "/allowable_strain", "element " + std::to_string(e) + ": not positive");
-      }
-    }
-    out[name] = std::move(f);
+    f.clamped = e.clamped;
+    out[in.name] = std::move(f);
   }
   return out;
 }

@@ -16,6 +16,7 @@
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
 #include "tfmb/formats/files.hpp"
+#include "tfmb/formats/materials.hpp"
 #include "tfmb/formats/model.hpp"
 #include "tfmb/formats/schema.hpp"
 
@@ -255,38 +256,30 @@ FileModel read_model(const Options& options) {
   // Materials: per element section stiffness and mass at the element temperature, thermal
   // strain (thickness mean) and thermal curvature as initial strains.
   if (!options.materials.empty()) {
-    const h5::Reader mt = formats::open_checked(options.materials, "materials");
-    for (const auto& name : mt.children("/flaps")) {
-      const std::string g = "/flaps/" + name;
-      if (!fm.flap_elements.count(name)) mt.fail(g, "flap '" + name + "' is not in the model " + options.model.string());
-      const auto& els = fm.flap_elements[name];
-      const size_t ne = els.size();
-      const auto eps = mt.read_vector(g + "/thermal_strain", ne);
-      const auto kappa = mt.read_vector(g + "/thermal_curvature", ne);
-      const double outer_sign = static_cast<double>(mt.attr_i64(g, "outer_normal_sign"));
-      std::vector<std::size_t> shape_k, shape_m;
-      const auto stiff = mt.read_f64(g + "/section_stiffness", &shape_k);
-      const auto mass = mt.read_f64(g + "/section_mass", &shape_m);
-      if (shape_k != std::vector<std::size_t>{ne, 6, 6}) mt.fail(g + "/section_stiffness", "shape must be (" + std::to_string(ne) + ",6,6), one per model element");
-      if (shape_m != std::vector<std::size_t>{ne, 6, 6}) mt.fail(g + "/section_mass", "shape must be (" + std::to_string(ne) + ",6,6), one per model element");
-      for (size_t e = 0; e < ne; ++e) {
+    const formats::Materials materials = formats::read_materials(options.materials);
+    for (const formats::MaterialsFlap& flap : materials.flaps) {
+      const std::string g = "/flaps/" + flap.name;
+      if (!fm.flap_elements.count(flap.name))
+        materials.fail(g, "flap '" + flap.name + "' is not in the model " + options.model.string());
+      const auto& els = fm.flap_elements[flap.name];
+      const formats::MaterialElements& props = flap.elements;
+      if (props.size() != els.size())
+        materials.fail(g + "/temperature", std::to_string(props.size()) + " elements, but the model's flap has " +
+                                               std::to_string(els.size()));
+      for (std::size_t e = 0; e < els.size(); ++e) {
         Element& el = m.elements[els[e]];
         Section s;
-        for (int i = 0; i < 6; ++i)
-          for (int j = 0; j < 6; ++j) s.stiffness(i, j) = stiff[36 * e + 6 * i + j];
-        for (int i = 0; i < 6; ++i)
-          if (!(s.stiffness(i, i) > 0.0)) mt.fail(g + "/section_stiffness", "element " + std::to_string(e) + ": diagonal entry " + std::to_string(i) + " must be > 0");
-        s.mass_per_length = mass[36 * e];
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) s.inertia_per_length(i, j) = mass[36 * e + 6 * (3 + i) + 3 + j];
+        s.stiffness = props.section_stiffness[e];
+        s.mass_per_length = props.section_mass[e](0, 0);
+        s.inertia_per_length = props.section_mass[e].block<3, 3>(3, 3);
         el.section = static_cast<int>(m.sections.size());
         m.sections.push_back(s);
         // Bending strain is -k3 y2 (y2 along e2, the left of the reference direction); the free
         // thermal strain grows towards the outer wall by kappa per unit length, so
         // k3_thermal = -kappa * outer_normal_sign.
         el.initial_strain.setZero();
-        el.initial_strain(0) = eps[e];
-        el.initial_strain(5) = -kappa[e] * outer_sign;
+        el.initial_strain(0) = props.thermal_strain[e];
+        el.initial_strain(5) = -props.thermal_curvature[e] * flap.outer_normal_sign;
       }
     }
   }
