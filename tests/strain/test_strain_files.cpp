@@ -53,7 +53,8 @@ void write_materials(const std::filesystem::path& file, double thermal_inner, do
     k[e * 36 + 35] = kE * kWidth * kThickness * kThickness * kThickness / 12.0;
     // Shear, torsion and out-of-plane bending: not used by the strain stage, but a section
     // matrix must not be singular (the materials reader refuses that).
-    for (std::size_t d : {7u, 14u, 21u, 28u}) k[e * 36 + d] = 1e3;
+    for (std::size_t d : {7u, 14u, 21u, 28u})
+      k[e * 36 + d] = 1e3;
     m[e * 36] = 1.0;
   }
   tf::set_f64(doc, g + "/section_stiffness", {n, 6, 6}, k, "N, N m^2");

@@ -264,7 +264,8 @@ FileModel read_model(const Options& options) {
       const auto& els = fm.flap_elements[flap.name];
       const formats::MaterialElements& props = flap.elements;
       if (props.size() != els.size())
-        materials.fail(g + "/temperature", std::to_string(props.size()) + " elements, but the model's flap has " +
+        materials.fail(g + "/temperature", std::to_string(props.size()) +
+                                               " elements, but the model's flap has " +
                                                std::to_string(els.size()));
       for (std::size_t e = 0; e < els.size(); ++e) {
         Element& el = m.elements[els[e]];
