@@ -8,6 +8,7 @@
 
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
+#include "tfmb/formats/loads.hpp"
 #include "tfmb/formats/model.hpp"
 #include "tfmb/formats/schema.hpp"
 
@@ -193,33 +194,30 @@ Structure read_structure(const std::filesystem::path& file) {
 
 void write_loads(const std::filesystem::path& file, const LoadsFile& loads,
                  const formats::Provenance& provenance) {
-  h5::Writer writer(file);
-  formats::write_header(writer, "loads", loads.header);
-  writer.set_attr("/", "method", method_name(loads.method));
-  writer.set_attr("/", "load_basis", loads.load_basis);
+  auto in_3d = [](const Vec2& v) { return Eigen::Vector3d(v.x(), v.y(), 0.0); };
+  auto about_z = [](double m) { return Eigen::Vector3d(0.0, 0.0, m); };
+  formats::Loads out;
+  out.header = loads.header;
+  out.method = method_name(loads.method);
+  out.load_basis = loads.load_basis;
   for (const auto& flap : loads.flaps) {
-    const std::string g = "/flaps/" + flap.name;
     const FlapLoads& l = flap.loads;
-    writer.write(g + "/s", l.arc_length, "m", "arc length of each beam node");
-    writer.write(g + "/distributed_force", rows3(l.distributed_force), "N/m",
-                 "force per unit beam length at each node, over the flap width");
-    h5::MatrixXdR m = h5::MatrixXdR::Zero(static_cast<Eigen::Index>(l.distributed_moment.size()), 3);
-    for (std::size_t i = 0; i < l.distributed_moment.size(); ++i) m(static_cast<Eigen::Index>(i), 2) = l.distributed_moment[i];
-    writer.write(g + "/distributed_moment", m, "N", "moment per unit beam length at each node");
-    writer.write(g + "/nodal_force", rows3(l.nodal_force), "N", "consistent nodal forces");
-    for (std::size_t i = 0; i < l.nodal_moment.size(); ++i) m(static_cast<Eigen::Index>(i), 2) = l.nodal_moment[i];
-    writer.write(g + "/nodal_moment", m, "N m", "consistent nodal moments");
-    writer.set_attr(g, "width", flap.width);
-    writer.set_attr(g, "total_force", std::vector<double>{l.traces.force.x(), l.traces.force.y(), 0.0});
-    writer.set_attr(g, "total_moment", std::vector<double>{0.0, 0.0, l.traces.moment});
-    writer.set_attr(g, "mapped_force", std::vector<double>{l.mapped.force.x(), l.mapped.force.y(), 0.0});
-    writer.set_attr(g, "mapped_moment", std::vector<double>{0.0, 0.0, l.mapped.moment});
-    std::string names;
-    for (const auto& t : flap.traces) names += (names.empty() ? "" : " ") + t;
-    writer.set_attr(g, "traces", names);
+    formats::LoadsFlap f;
+    f.name = flap.name;
+    f.width = flap.width;
+    f.traces = flap.traces;
+    f.s = l.arc_length;
+    for (const Vec2& q : l.distributed_force) f.distributed_force.push_back(in_3d(q));
+    for (double m : l.distributed_moment) f.distributed_moment.push_back(about_z(m));
+    for (const Vec2& p : l.nodal_force) f.nodal_force.push_back(in_3d(p));
+    for (double m : l.nodal_moment) f.nodal_moment.push_back(about_z(m));
+    f.total_force = in_3d(l.traces.force);
+    f.total_moment = about_z(l.traces.moment);
+    f.mapped_force = in_3d(l.mapped.force);
+    f.mapped_moment = about_z(l.mapped.moment);
+    out.flaps.push_back(std::move(f));
   }
-  formats::write_provenance(writer, provenance);
-  writer.commit();
+  formats::write_loads(file, out, provenance);
 }
 
 void write_walldisp(const std::filesystem::path& file, const formats::Header& header,

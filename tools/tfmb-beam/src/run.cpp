@@ -16,6 +16,7 @@
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
 #include "tfmb/formats/files.hpp"
+#include "tfmb/formats/loads.hpp"
 #include "tfmb/formats/materials.hpp"
 #include "tfmb/formats/model.hpp"
 #include "tfmb/formats/schema.hpp"
@@ -229,20 +230,20 @@ FileModel read_model(const Options& options) {
   // "prefer nodal_force/nodal_moment in the beam"); the distributed forces beside them are a
   // projection for plotting and are not read.
   if (!options.loads.empty()) {
-    const h5::Reader l = formats::open_checked(options.loads, "loads");
-    for (const auto& name : l.children("/flaps")) {
-      const std::string g = "/flaps/" + name;
-      if (!fm.flap_elements.count(name)) l.fail(g, "flap '" + name + "' is not in the model " + options.model.string());
-      const auto rows = static_cast<Eigen::Index>(fm.flap_elements[name].size() + 1);
-      const h5::MatrixXdR force = l.read_matrix(g + "/nodal_force", rows, 3);
-      const h5::MatrixXdR moment = l.read_matrix(g + "/nodal_moment", rows, 3);
-      for (Eigen::Index i = 0; i < rows; ++i) {
-        if (force.row(i).norm() == 0.0 && moment.row(i).norm() == 0.0)
-          continue;
+    const formats::Loads loads = formats::read_loads(options.loads);
+    for (const formats::LoadsFlap& flap : loads.flaps) {
+      const std::string g = "/flaps/" + flap.name;
+      if (!fm.flap_elements.count(flap.name))
+        loads.fail(g, "flap '" + flap.name + "' is not in the model " + options.model.string());
+      const std::size_t nodes = fm.flap_elements[flap.name].size() + 1;
+      if (flap.s.size() != nodes)
+        loads.fail(g + "/s", std::to_string(flap.s.size()) + " nodes, but the model's flap has " + std::to_string(nodes));
+      for (std::size_t i = 0; i < nodes; ++i) {
+        if (flap.nodal_force[i].norm() == 0.0 && flap.nodal_moment[i].norm() == 0.0) continue;
         NodalLoad load;
-        load.node = fm.flap_nodes[name][static_cast<std::size_t>(2 * i)];
-        load.force = force.row(i).transpose();
-        load.moment = moment.row(i).transpose();
+        load.node = fm.flap_nodes[flap.name][2 * i];
+        load.force = flap.nodal_force[i];
+        load.moment = flap.nodal_moment[i];
         // Follower loads (pressure turns with the wall) are given in the node's reference frame.
         load.follower = !options.dead_loads;
         if (load.follower) {
