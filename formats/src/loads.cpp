@@ -12,24 +12,31 @@ namespace {
 
 h5::MatrixXdR rows(const std::vector<Eigen::Vector3d>& v) {
   h5::MatrixXdR m(static_cast<Eigen::Index>(v.size()), 3);
-  for (std::size_t i = 0; i < v.size(); ++i) m.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
+  for (std::size_t i = 0; i < v.size(); ++i)
+    m.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
   return m;
 }
 
-std::vector<Eigen::Vector3d> read_rows(const h5::Reader& r, const std::string& path, std::size_t count) {
+std::vector<Eigen::Vector3d> read_rows(const h5::Reader& r, const std::string& path,
+                                       std::size_t count) {
   const h5::MatrixXdR m = r.read_matrix(path, static_cast<Eigen::Index>(count), 3);
   std::vector<Eigen::Vector3d> out(count);
-  for (std::size_t i = 0; i < count; ++i) out[i] = m.row(static_cast<Eigen::Index>(i)).transpose();
+  for (std::size_t i = 0; i < count; ++i)
+    out[i] = m.row(static_cast<Eigen::Index>(i)).transpose();
   return out;
 }
 
-Eigen::Vector3d read_vector3(const h5::Reader& r, const std::string& object, const std::string& name) {
+Eigen::Vector3d read_vector3(const h5::Reader& r, const std::string& object,
+                             const std::string& name) {
   const std::vector<double> v = r.attr_f64_vector(object, name);
-  if (v.size() != 3) r.fail(object, "attribute '" + name + "' must have 3 components");
+  if (v.size() != 3)
+    r.fail(object, "attribute '" + name + "' must have 3 components");
   return {v[0], v[1], v[2]};
 }
 
-std::vector<double> components(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+std::vector<double> components(const Eigen::Vector3d& v) {
+  return {v.x(), v.y(), v.z()};
+}
 
 }  // namespace
 
@@ -37,7 +44,8 @@ void Loads::fail(const std::string& object_path, const std::string& what) const 
   throw BadInput(source.string() + ": " + object_path + ": " + what);
 }
 
-void write_loads(const std::filesystem::path& file, const Loads& loads, const Provenance& provenance) {
+void write_loads(const std::filesystem::path& file, const Loads& loads,
+                 const Provenance& provenance) {
   h5::Writer w(file);
   write_header(w, "loads", loads.header);
   w.set_attr("/", "method", loads.method);
@@ -47,7 +55,8 @@ void write_loads(const std::filesystem::path& file, const Loads& loads, const Pr
     w.write(g + "/s", f.s, "m", "arc length of each beam node");
     w.write(g + "/distributed_force", rows(f.distributed_force), "N/m",
             "force per unit beam length at each node, over the flap width");
-    w.write(g + "/distributed_moment", rows(f.distributed_moment), "N", "moment per unit beam length at each node");
+    w.write(g + "/distributed_moment", rows(f.distributed_moment), "N",
+            "moment per unit beam length at each node");
     w.write(g + "/nodal_force", rows(f.nodal_force), "N", "consistent nodal forces");
     w.write(g + "/nodal_moment", rows(f.nodal_moment), "N m", "consistent nodal moments");
     w.set_attr(g, "width", f.width);
@@ -56,7 +65,8 @@ void write_loads(const std::filesystem::path& file, const Loads& loads, const Pr
     w.set_attr(g, "mapped_force", components(f.mapped_force));
     w.set_attr(g, "mapped_moment", components(f.mapped_moment));
     std::string names;
-    for (const auto& t : f.traces) names += (names.empty() ? "" : " ") + t;
+    for (const auto& t : f.traces)
+      names += (names.empty() ? "" : " ") + t;
     w.set_attr(g, "traces", names);
   }
   write_provenance(w, provenance);
@@ -76,12 +86,15 @@ Loads read_loads(const std::filesystem::path& file) {
     f.name = name;
     f.width = r.attr_f64(g, "width");
     std::istringstream words(r.attr_string(g, "traces"));
-    for (std::string t; words >> t;) f.traces.push_back(t);
+    for (std::string t; words >> t;)
+      f.traces.push_back(t);
     f.s = r.read_vector(g + "/s");
     const std::size_t n = f.s.size();
-    if (n < 2) r.fail(g + "/s", "fewer than two beam nodes");
+    if (n < 2)
+      r.fail(g + "/s", "fewer than two beam nodes");
     for (std::size_t i = 1; i < n; ++i)
-      if (!(f.s[i] >= f.s[i - 1])) r.fail(g + "/s", "arc length decreases at node " + std::to_string(i));
+      if (!(f.s[i] >= f.s[i - 1]))
+        r.fail(g + "/s", "arc length decreases at node " + std::to_string(i));
     f.distributed_force = read_rows(r, g + "/distributed_force", n);
     f.distributed_moment = read_rows(r, g + "/distributed_moment", n);
     f.nodal_force = read_rows(r, g + "/nodal_force", n);

@@ -29,16 +29,17 @@ formats::MaterialsFlap materials_flap(std::size_t elements) {
   f.shear_modulus_basis = f.allowable_strain_basis = "test";
   formats::MaterialElements& e = f.elements;
   for (std::size_t k = 0; k < elements; ++k) {
-    for (auto* v : {&e.temperature, &e.youngs_modulus, &e.shear_modulus, &e.density, &e.yield_strength,
-                    &e.ultimate_strength})
+    for (auto* v : {&e.temperature, &e.youngs_modulus, &e.shear_modulus, &e.density,
+                    &e.yield_strength, &e.ultimate_strength})
       v->push_back(400.0 + static_cast<double>(k));
-    for (auto* v : {&e.delta_temperature, &e.thermal_strain, &e.thermal_strain_inner, &e.thermal_strain_outer,
-                    &e.thermal_curvature})
+    for (auto* v : {&e.delta_temperature, &e.thermal_strain, &e.thermal_strain_inner,
+                    &e.thermal_strain_outer, &e.thermal_curvature})
       v->push_back(1e-3 * static_cast<double>(k));
     e.poisson_ratio.push_back(0.3);
     e.thermal_expansion.push_back(9e-6);
     e.allowable_strain.push_back(5e-3);
-    e.section_stiffness.push_back(Eigen::Matrix<double, 6, 6>::Identity() * (1e6 + static_cast<double>(k)));
+    e.section_stiffness.push_back(Eigen::Matrix<double, 6, 6>::Identity() *
+                                  (1e6 + static_cast<double>(k)));
     e.section_mass.push_back(Eigen::Matrix<double, 6, 6>::Identity());
     e.clamped.push_back(k % 2);
   }
@@ -67,8 +68,9 @@ TEST(TypedIo, MaterialsRoundTripAndASingularSectionIsRefused) {
     formats::read_materials(file);
     FAIL() << "a singular section was read";
   } catch (const BadInput& e) {
-    EXPECT_NE(std::string(e.what()).find("/flaps/upper/section_stiffness: element 1: diagonal entry 3"),
-              std::string::npos)
+    EXPECT_NE(
+        std::string(e.what()).find("/flaps/upper/section_stiffness: element 1: diagonal entry 3"),
+        std::string::npos)
         << e.what();
   }
 }
@@ -108,7 +110,8 @@ TEST(TypedIo, LoadsRoundTripAndAReversedArcLengthIsRefused) {
         try {
           formats::read_loads(file);
         } catch (const BadInput& e) {
-          EXPECT_NE(std::string(e.what()).find("/flaps/lower/s: arc length decreases at node 2"), std::string::npos)
+          EXPECT_NE(std::string(e.what()).find("/flaps/lower/s: arc length decreases at node 2"),
+                    std::string::npos)
               << e.what();
           throw;
         }

@@ -207,10 +207,14 @@ void write_loads(const std::filesystem::path& file, const LoadsFile& loads,
     f.width = flap.width;
     f.traces = flap.traces;
     f.s = l.arc_length;
-    for (const Vec2& q : l.distributed_force) f.distributed_force.push_back(in_3d(q));
-    for (double m : l.distributed_moment) f.distributed_moment.push_back(about_z(m));
-    for (const Vec2& p : l.nodal_force) f.nodal_force.push_back(in_3d(p));
-    for (double m : l.nodal_moment) f.nodal_moment.push_back(about_z(m));
+    for (const Vec2& q : l.distributed_force)
+      f.distributed_force.push_back(in_3d(q));
+    for (double m : l.distributed_moment)
+      f.distributed_moment.push_back(about_z(m));
+    for (const Vec2& p : l.nodal_force)
+      f.nodal_force.push_back(in_3d(p));
+    for (double m : l.nodal_moment)
+      f.nodal_moment.push_back(about_z(m));
     f.total_force = in_3d(l.traces.force);
     f.total_moment = about_z(l.traces.moment);
     f.mapped_force = in_3d(l.mapped.force);

@@ -237,9 +237,11 @@ FileModel read_model(const Options& options) {
         loads.fail(g, "flap '" + flap.name + "' is not in the model " + options.model.string());
       const std::size_t nodes = fm.flap_elements[flap.name].size() + 1;
       if (flap.s.size() != nodes)
-        loads.fail(g + "/s", std::to_string(flap.s.size()) + " nodes, but the model's flap has " + std::to_string(nodes));
+        loads.fail(g + "/s", std::to_string(flap.s.size()) + " nodes, but the model's flap has " +
+                                 std::to_string(nodes));
       for (std::size_t i = 0; i < nodes; ++i) {
-        if (flap.nodal_force[i].norm() == 0.0 && flap.nodal_moment[i].norm() == 0.0) continue;
+        if (flap.nodal_force[i].norm() == 0.0 && flap.nodal_moment[i].norm() == 0.0)
+          continue;
         NodalLoad load;
         load.node = fm.flap_nodes[flap.name][2 * i];
         load.force = flap.nodal_force[i];

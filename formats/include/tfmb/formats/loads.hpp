@@ -20,8 +20,8 @@ struct LoadsFlap {
   // One row per beam node, (x, y, z) components.
   std::vector<Eigen::Vector3d> distributed_force;   // [N/m] L2 projection, for plots
   std::vector<Eigen::Vector3d> distributed_moment;  // [N]
-  std::vector<Eigen::Vector3d> nodal_force;         // [N] consistent nodal forces (what a beam takes)
-  std::vector<Eigen::Vector3d> nodal_moment;        // [N m]
+  std::vector<Eigen::Vector3d> nodal_force;   // [N] consistent nodal forces (what a beam takes)
+  std::vector<Eigen::Vector3d> nodal_moment;  // [N m]
   Eigen::Vector3d total_force = Eigen::Vector3d::Zero();    // [N] integral of the traces
   Eigen::Vector3d total_moment = Eigen::Vector3d::Zero();   // [N m] about the origin
   Eigen::Vector3d mapped_force = Eigen::Vector3d::Zero();   // [N] sum of the nodal loads
@@ -31,8 +31,8 @@ struct LoadsFlap {
 struct Loads {
   std::filesystem::path source;  // the file it was read from
   Header header;
-  std::string method;      // linear | conservative
-  std::string load_basis;  // what the loads are per (loads.md)
+  std::string method;            // linear | conservative
+  std::string load_basis;        // what the loads are per (loads.md)
   std::vector<LoadsFlap> flaps;  // by name
 
   // A BadInput naming the source file and the object in it (for the readers' own checks).
@@ -40,7 +40,8 @@ struct Loads {
 };
 
 // Writes loads.h5 atomically (header, flaps, provenance).
-void write_loads(const std::filesystem::path& file, const Loads& loads, const Provenance& provenance);
+void write_loads(const std::filesystem::path& file, const Loads& loads,
+                 const Provenance& provenance);
 // Reads and validates a loads file (BadInput naming the file and the object on any problem).
 Loads read_loads(const std::filesystem::path& file);
 
