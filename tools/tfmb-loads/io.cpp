@@ -10,6 +10,7 @@
 #include "tfmb/common/h5.hpp"
 #include "tfmb/formats/loads.hpp"
 #include "tfmb/formats/model.hpp"
+#include "tfmb/formats/structure.hpp"
 #include "tfmb/formats/schema.hpp"
 
 namespace tfmb::loads {
@@ -169,25 +170,18 @@ std::vector<MeshWall> read_mesh_walls(const std::filesystem::path& file) {
 }
 
 Structure read_structure(const std::filesystem::path& file) {
-  const h5::Reader reader = formats::open_checked(file, "structure");
+  const formats::Structure in = formats::read_structure(file);
   Structure out;
-  out.header = formats::read_header(reader);
-  const h5::MatrixXdR points = reader.read_matrix("/beam/points", std::nullopt, 3);
-  const auto n = static_cast<std::size_t>(points.rows());
-  const h5::MatrixXdR displacement = reader.read_matrix("/fields/point/displacement", n, 3);
-  const h5::MatrixXdR rotation = reader.read_matrix("/fields/point/rotation", n, 3);
-  for (const std::string& name : reader.children("/flaps")) {
-    const std::string g = "/flaps/" + name;
-    const std::vector<std::int64_t> nodes =
-        reader.read_index_vector(g + "/nodes", std::nullopt, 0, static_cast<std::int64_t>(n));
-    if (nodes.size() < 2) reader.fail(g + "/nodes", "fewer than two beam nodes");
+  out.header = in.header;
+  for (const formats::StructureFlap& f : in.flaps) {
     StructureFlap flap;
-    for (std::int64_t node : nodes) {
-      flap.points.emplace_back(points(node, 0), points(node, 1));
-      flap.motion.displacement.emplace_back(displacement(node, 0), displacement(node, 1));
-      flap.motion.rotation.push_back(wiener_milenkovic_angle(rotation(node, 2)));
+    for (std::int64_t node : f.nodes) {
+      const auto i = static_cast<std::size_t>(node);
+      flap.points.emplace_back(in.points[i].x(), in.points[i].y());
+      flap.motion.displacement.emplace_back(in.displacement[i].x(), in.displacement[i].y());
+      flap.motion.rotation.push_back(wiener_milenkovic_angle(in.rotation[i].z()));
     }
-    out.flaps[name] = std::move(flap);
+    out.flaps[f.name] = std::move(flap);
   }
   return out;
 }

@@ -8,52 +8,38 @@
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
 #include "tfmb/formats/materials.hpp"
+#include "tfmb/formats/structure.hpp"
 #include "tfmb/formats/schema.hpp"
 
 namespace tfmb::strain {
 
 Structure read_structure(const std::filesystem::path& file) {
-  const h5::Reader reader = formats::open_checked(file, "structure");
+  const formats::Structure in = formats::read_structure(file);
   Structure out;
-  out.header = formats::read_header(reader);
-  out.converged = reader.attr_i64("/", "converged") == 1;
-  const h5::MatrixXdR points = reader.read_matrix("/beam/points", std::nullopt, 3);
-  const auto n = static_cast<std::int64_t>(points.rows());
-  const h5::MatrixXiR segments = reader.read_index_matrix("/beam/segments", std::nullopt, 2, 0, n);
-  const auto e = static_cast<std::size_t>(segments.rows());
-  const h5::MatrixXdR strain = reader.read_matrix("/fields/cell/sectional_strain", e, 6);
-  const h5::MatrixXdR force = reader.read_matrix("/fields/cell/sectional_force", e, 6);
-  for (std::size_t k = 0; k < e; ++k) {
-    std::array<double, 6> a{}, b{};
-    for (int c = 0; c < 6; ++c) {
-      a[static_cast<std::size_t>(c)] = strain(static_cast<Eigen::Index>(k), c);
-      b[static_cast<std::size_t>(c)] = force(static_cast<Eigen::Index>(k), c);
+  out.header = in.header;
+  out.converged = in.converged;
+  for (std::size_t k = 0; k < in.segments.size(); ++k) {
+    std::array<double, 6> strain{}, force{};
+    for (std::size_t c = 0; c < 6; ++c) {
+      strain[c] = in.sectional_strain[k](static_cast<Eigen::Index>(c));
+      force[c] = in.sectional_force[k](static_cast<Eigen::Index>(c));
     }
-    out.sectional_strain.push_back(a);
-    out.sectional_force.push_back(b);
+    out.sectional_strain.push_back(strain);
+    out.sectional_force.push_back(force);
   }
-  for (const std::string& name : reader.children("/flaps")) {
-    const std::string g = "/flaps/" + name;
+  for (const formats::StructureFlap& f : in.flaps) {
     StructureFlap flap;
-    flap.segments = reader.read_index_vector(g + "/segments", std::nullopt, 0, static_cast<std::int64_t>(e));
+    flap.segments = f.segments;
     double length = 0.0;
-    for (std::size_t k = 0; k < flap.segments.size(); ++k) {
-      const auto row = static_cast<Eigen::Index>(flap.segments[k]);
-      const Eigen::Vector2d a(points(segments(row, 0), 0), points(segments(row, 0), 1));
-      const Eigen::Vector2d b(points(segments(row, 1), 0), points(segments(row, 1), 1));
-      if (k > 0) {
-        // Segments of a flap run head to tail.
-        const auto previous = static_cast<Eigen::Index>(flap.segments[k - 1]);
-        if (segments(previous, 1) != segments(row, 0)) {
-          reader.fail(g + "/segments", "segment " + std::to_string(k) + " does not start where segment " +
-                                           std::to_string(k - 1) + " ends");
-        }
-      }
+    for (std::int64_t segment : f.segments) {
+      const auto& [head, tail] = in.segments[static_cast<std::size_t>(segment)];
+      const Eigen::Vector2d a = in.points[static_cast<std::size_t>(head)].head<2>();
+      const Eigen::Vector2d b = in.points[static_cast<std::size_t>(tail)].head<2>();
       flap.segment_middle.push_back(0.5 * (a + b));
       flap.segment_arc_length.push_back(length + 0.5 * (b - a).norm());
       length += (b - a).norm();
     }
-    out.flaps[name] = std::move(flap);
+    out.flaps[f.name] = std::move(flap);
   }
   return out;
 }

@@ -19,6 +19,7 @@
 #include "tfmb/formats/loads.hpp"
 #include "tfmb/formats/materials.hpp"
 #include "tfmb/formats/model.hpp"
+#include "tfmb/formats/structure.hpp"
 #include "tfmb/formats/schema.hpp"
 
 namespace tfmb::beam {
@@ -297,118 +298,83 @@ void write_structure(const Options& options, const FileModel& fm, const Assembly
                      const std::vector<std::vector<Eigen::Vector3d>>& history, const ModalResult* modes,
                      const Motion* motion = nullptr, double end_time = 0.0) {
   const Model& m = fm.model;
-  h5::Writer w(options.output);
-  formats::Header header;
-  header.creator = "tfmb-beam " TFMB_BEAM_VERSION;
-  formats::write_header(w, "structure", header);
-  w.set_attr("/", "analysis", analysis);
-  w.set_attr("/", "converged", static_cast<std::int64_t>(converged ? 1 : 0));
-  const Eigen::Index n = static_cast<Eigen::Index>(m.nodes.size());
-  h5::MatrixXdR pts(n, 3), disp(n, 3), rot(n, 3);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    pts.row(i) = m.nodes[i].position.transpose();
-    disp.row(i) = (state.position[i] - m.nodes[i].position).transpose();
-    rot.row(i) = state.rotation[i].transpose();
+  formats::Structure out;
+  out.header.creator = "tfmb-beam " TFMB_BEAM_VERSION;
+  out.analysis = analysis;
+  out.converged = converged;
+  const std::size_t n = m.nodes.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    out.points.push_back(m.nodes[i].position);
+    out.displacement.push_back(state.position[i] - m.nodes[i].position);
+    out.rotation.push_back(state.rotation[i]);
   }
-  w.write("/beam/points", pts, "m", "beam node reference positions");
-  const Eigen::Index ns = 2 * static_cast<Eigen::Index>(m.elements.size());
-  h5::MatrixXiR seg(ns, 2);
-  h5::MatrixXdR strain(ns, 6), force(ns, 6);
+  // Two display segments per quadratic element, each with its half's Gauss point values.
   std::vector<ElementResult> er;
   asmb.element_results(state, er);
-  for (size_t e = 0; e < m.elements.size(); ++e)
-    for (int s = 0; s < 2; ++s) {
-      const Eigen::Index r = 2 * static_cast<Eigen::Index>(e) + s;
-      seg(r, 0) = m.elements[e].nodes[s];
-      seg(r, 1) = m.elements[e].nodes[s + 1];
-      strain.row(r) = er[e].strain[s].transpose();
-      force.row(r) = er[e].stress[s].transpose();
+  for (std::size_t e = 0; e < m.elements.size(); ++e)
+    for (int half = 0; half < 2; ++half) {
+      out.segments.push_back({m.elements[e].nodes[half], m.elements[e].nodes[half + 1]});
+      out.sectional_strain.push_back(er[e].strain[half]);
+      out.sectional_force.push_back(er[e].stress[half]);
     }
-  w.write("/beam/segments", seg, "1", "display segments (two per quadratic element)");
-  w.write("/fields/point/displacement", disp, "m");
-  w.write("/fields/point/rotation", rot, "1", "Wiener-Milenkovic rotation parameters");
-  w.write("/fields/cell/sectional_strain", strain, "1, 1/m",
-          "per segment (Gauss point of the element half): axial, 2 shear, torsion, 2 curvatures");
-  w.write("/fields/cell/sectional_force", force, "N, N m", "axial, 2 shear forces, torsion, 2 bending moments");
   for (const auto& name : fm.flap_names) {
-    std::vector<std::int64_t> nodes(fm.flap_nodes.at(name).begin(), fm.flap_nodes.at(name).end());
-    std::vector<std::int64_t> segs;
-    for (int e : fm.flap_elements.at(name)) {
-      segs.push_back(2 * e);
-      segs.push_back(2 * e + 1);
-    }
-    w.write("/flaps/" + name + "/nodes", nodes);
-    w.write("/flaps/" + name + "/segments", segs);
+    formats::StructureFlap flap;
+    flap.name = name;
+    flap.nodes.assign(fm.flap_nodes.at(name).begin(), fm.flap_nodes.at(name).end());
+    for (int e : fm.flap_elements.at(name)) flap.segments.insert(flap.segments.end(), {2 * e, 2 * e + 1});
+    out.flaps.push_back(std::move(flap));
   }
-  for (size_t j = 0; j < m.joints.size(); ++j) {
+  for (std::size_t j = 0; j < m.joints.size(); ++j) {
     if (m.joints[j].kind == JointKind::planar) continue;
-    const std::string g = "/joints/" + fm.joint_names[j];
-    const auto outs = asmb.joint_outputs(state, static_cast<int>(j));
-    std::vector<double> reaction(6, 0.0);
-    auto get = [&](const std::string& key, double& v) {
-      for (const auto& o : outs)
-        if (o.name == key) {
-          v = o.value;
-          return true;
-        }
-      return false;
+    formats::StructureJoint joint;
+    joint.name = fm.joint_names[j];
+    const auto outputs = asmb.joint_outputs(state, static_cast<int>(j));
+    auto get = [&](const std::string& key) -> std::optional<double> {
+      for (const auto& o : outputs)
+        if (o.name == key) return o.value;
+      return std::nullopt;
     };
-    const char* keys[] = {"reaction_force_x", "reaction_force_y", "reaction_force_z",
-                          "reaction_moment_x", "reaction_moment_y", "reaction_moment_z"};
-    for (int k = 0; k < 6; ++k) get(keys[k], reaction[k]);
-    w.write(g + "/reaction", reaction, "N, N m", "force and moment on the structure from the joint");
-    double v = 0.0;
-    if (get("relative_rotation", v)) w.write(g + "/relative_rotation", std::vector<double>{v}, "rad");
-    if (get("contact_force", v)) w.write(g + "/contact_force", std::vector<double>{v}, "N");
-    if (get("gap", v)) w.write(g + "/gap", std::vector<double>{v}, "m");
-    if (get("sliding", v)) w.write(g + "/sliding", std::vector<double>{v}, "m");
+    const char* reaction_keys[] = {"reaction_force_x",  "reaction_force_y",  "reaction_force_z",
+                                   "reaction_moment_x", "reaction_moment_y", "reaction_moment_z"};
+    for (int k = 0; k < 6; ++k) joint.reaction(k) = get(reaction_keys[k]).value_or(0.0);
+    for (const char* key : {"relative_rotation", "contact_force", "gap", "sliding"})
+      if (const auto v = get(key)) joint.scalars[key] = *v;
     if (m.joints[j].kind == JointKind::flexible) {
-      std::vector<double> e(6, 0.0);
       const char* names[] = {"stretch_1", "stretch_2", "stretch_3", "wryness_1", "wryness_2", "wryness_3"};
-      for (int k = 0; k < 6; ++k) get(names[k], e[k]);
-      w.write(g + "/deformation", e, "m, 1", "stretch (3) and wryness (3) in the joint frame");
-      if (get("strain_energy", v)) w.write(g + "/strain_energy", std::vector<double>{v}, "J");
+      formats::Vector6 deformation;
+      for (int k = 0; k < 6; ++k) deformation(k) = get(names[k]).value_or(0.0);
+      joint.deformation = deformation;
+      if (const auto v = get("strain_energy")) joint.scalars["strain_energy"] = *v;
     }
+    out.joints.push_back(std::move(joint));
   }
-  if (!times.empty()) {
-    w.write("/history/time", times, "s");
-    std::vector<double> flat;
-    for (const auto& snap : history)
-      for (Eigen::Index i = 0; i < n; ++i)
-        for (int c = 0; c < 3; ++c) flat.push_back(snap[i](c) - m.nodes[i].position(c));
-    w.write_array("/history/displacement", flat, {times.size(), static_cast<size_t>(n), 3}, "m");
+  out.history_time = times;
+  for (const auto& snapshot : history) {
+    std::vector<Eigen::Vector3d> displacement(n);
+    for (std::size_t i = 0; i < n; ++i) displacement[i] = snapshot[i] - m.nodes[i].position;
+    out.history_displacement.push_back(std::move(displacement));
   }
   if (modes) {
     const Eigen::VectorXd& f = modes->frequencies_hz;
-    w.write("/modes/frequency", std::vector<double>(f.data(), f.data() + f.size()), "Hz",
-            "natural frequencies about the reference state");
-    std::vector<double> shapes;
+    out.mode_frequency.assign(f.data(), f.data() + f.size());
     for (Eigen::Index k = 0; k < f.size(); ++k) {
       const double peak = modes->mode_shapes.col(k).cwiseAbs().maxCoeff();
-      for (Eigen::Index i = 0; i < n; ++i)
-        for (int c = 0; c < 3; ++c) shapes.push_back(modes->mode_shapes(6 * i + c, k) / (peak > 0 ? peak : 1.0));
+      std::vector<Eigen::Vector3d> shape(n);
+      for (std::size_t i = 0; i < n; ++i)
+        shape[i] = modes->mode_shapes.block<3, 1>(6 * static_cast<Eigen::Index>(i), k) / (peak > 0 ? peak : 1.0);
+      out.mode_displacement.push_back(std::move(shape));
     }
-    w.write_array("/modes/displacement", shapes, {static_cast<size_t>(f.size()), static_cast<size_t>(n), 3}, "1",
-                  "nodal translations of each mode, divided by the largest entry of the mode vector");
   }
   if (motion) {
     // What a later dynamic run needs to continue this one (--initial-state): the positions and
-    // rotations are /fields/point/*, the rates and joint unknowns are here.
-    h5::MatrixXdR v(n, 3), omega(n, 3);
-    for (Eigen::Index i = 0; i < n; ++i) {
-      v.row(i) = motion->velocity[i].transpose();
-      omega.row(i) = motion->angular_velocity[i].transpose();
-    }
-    w.write("/restart/velocity", v, "m/s", "nodal velocity at the end of the run");
-    w.write("/restart/angular_velocity", omega, "rad/s", "nodal angular velocity, material frame");
-    if (state.joint_dofs.size() > 0) {
-      w.write("/restart/joint_dofs", std::vector<double>(state.joint_dofs.data(), state.joint_dofs.data() + state.joint_dofs.size()),
-              "rad", "joint unknowns (e.g. revolute relative angles)");
-      w.write("/restart/joint_rates",
-              std::vector<double>(motion->joint_rates.data(), motion->joint_rates.data() + motion->joint_rates.size()),
-              "rad/s", "rates of the joint unknowns");
-    }
-    w.set_attr("/restart", "time", end_time);
+    // rotations are the fields, the rates and joint unknowns are here.
+    formats::StructureRestart restart;
+    restart.velocity = motion->velocity;
+    restart.angular_velocity = motion->angular_velocity;
+    restart.joint_dofs.assign(state.joint_dofs.data(), state.joint_dofs.data() + state.joint_dofs.size());
+    restart.joint_rates.assign(motion->joint_rates.data(), motion->joint_rates.data() + motion->joint_rates.size());
+    restart.time = end_time;
+    out.restart = std::move(restart);
   }
   formats::Provenance prov;
   prov.command_line = options.command_line;
@@ -419,9 +385,7 @@ void write_structure(const Options& options, const FileModel& fm, const Assembly
   prov.inputs.push_back(options.model);
   if (!options.loads.empty()) prov.inputs.push_back(options.loads);
   if (!options.materials.empty()) prov.inputs.push_back(options.materials);
-  formats::write_provenance(w, prov);
-  w.commit();
-  formats::write_xdmf_sidecar(options.output);
+  formats::write_structure(options.output, out, prov);
 }
 
 }  // namespace
@@ -431,32 +395,28 @@ namespace {
 /// Start state and motion from an earlier dynamic structure.h5 of the same model (--initial-state).
 void continue_from(const std::filesystem::path& file, const FileModel& fm, const Assembly& asmb, State& state,
                    DynamicSolver& solver) {
-  const h5::Reader r = formats::open_checked(file, "structure");
+  const formats::Structure earlier = formats::read_structure(file);
   const Model& m = fm.model;
-  const Eigen::Index n = static_cast<Eigen::Index>(m.nodes.size());
-  if (!r.exists("/restart/velocity")) r.fail("/restart", "missing: the file is not from a dynamic run");
-  const h5::MatrixXdR points = r.read_matrix("/beam/points", n, 3);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    if ((points.row(i).transpose() - m.nodes[i].position).norm() > 1e-9 * (1.0 + m.nodes[i].position.norm())) {
-      r.fail("/beam/points", "node " + std::to_string(i) + " is not where the model puts it: another model");
-    }
+  const std::size_t n = m.nodes.size();
+  if (!earlier.restart) earlier.fail("/restart", "missing: the file is not from a dynamic run");
+  if (earlier.points.size() != n)
+    earlier.fail("/beam/points", std::to_string(earlier.points.size()) + " nodes, the model has " + std::to_string(n));
+  for (std::size_t i = 0; i < n; ++i) {
+    if ((earlier.points[i] - m.nodes[i].position).norm() > 1e-9 * (1.0 + m.nodes[i].position.norm()))
+      earlier.fail("/beam/points", "node " + std::to_string(i) + " is not where the model puts it: another model");
   }
-  const h5::MatrixXdR disp = r.read_matrix("/fields/point/displacement", n, 3);
-  const h5::MatrixXdR rot = r.read_matrix("/fields/point/rotation", n, 3);
-  const h5::MatrixXdR v = r.read_matrix("/restart/velocity", n, 3);
-  const h5::MatrixXdR omega = r.read_matrix("/restart/angular_velocity", n, 3);
-  std::vector<Eigen::Vector3d> velocity(n), angular_velocity(n);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    state.position[i] = m.nodes[i].position + disp.row(i).transpose();
-    state.rotation[i] = rot.row(i).transpose();
-    velocity[i] = v.row(i).transpose();
-    angular_velocity[i] = omega.row(i).transpose();
+  for (std::size_t i = 0; i < n; ++i) {
+    state.position[i] = m.nodes[i].position + earlier.displacement[i];
+    state.rotation[i] = earlier.rotation[i];
   }
-  solver.set_initial_velocity(velocity, angular_velocity);
+  solver.set_initial_velocity(earlier.restart->velocity, earlier.restart->angular_velocity);
   const auto nj = static_cast<std::size_t>(asmb.num_joint_dofs());
   if (nj > 0) {
-    const auto dofs = r.read_vector("/restart/joint_dofs", nj);
-    const auto rates = r.read_vector("/restart/joint_rates", nj);
+    if (earlier.restart->joint_dofs.size() != nj)
+      earlier.fail("/restart/joint_dofs", std::to_string(earlier.restart->joint_dofs.size()) +
+                                              " joint unknowns, the model has " + std::to_string(nj));
+    const auto& dofs = earlier.restart->joint_dofs;
+    const auto& rates = earlier.restart->joint_rates;
     state.joint_dofs = Eigen::Map<const Eigen::VectorXd>(dofs.data(), static_cast<Eigen::Index>(nj));
     solver.set_initial_joint_rates(Eigen::Map<const Eigen::VectorXd>(rates.data(), static_cast<Eigen::Index>(nj)));
   }
