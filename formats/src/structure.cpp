@@ -21,40 +21,47 @@ const std::map<std::string, std::string>& joint_scalar_units() {
 
 h5::MatrixXdR rows(const std::vector<Eigen::Vector3d>& v) {
   h5::MatrixXdR m(static_cast<Eigen::Index>(v.size()), 3);
-  for (std::size_t i = 0; i < v.size(); ++i) m.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
+  for (std::size_t i = 0; i < v.size(); ++i)
+    m.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
   return m;
 }
 
 h5::MatrixXdR rows(const std::vector<Vector6>& v) {
   h5::MatrixXdR m(static_cast<Eigen::Index>(v.size()), 6);
-  for (std::size_t i = 0; i < v.size(); ++i) m.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
+  for (std::size_t i = 0; i < v.size(); ++i)
+    m.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
   return m;
 }
 
 std::vector<double> flat(const std::vector<std::vector<Eigen::Vector3d>>& snapshots) {
   std::vector<double> out;
   for (const auto& snapshot : snapshots)
-    for (const auto& p : snapshot) out.insert(out.end(), {p.x(), p.y(), p.z()});
+    for (const auto& p : snapshot)
+      out.insert(out.end(), {p.x(), p.y(), p.z()});
   return out;
 }
 
-std::vector<Eigen::Vector3d> read_rows3(const h5::Reader& r, const std::string& path, std::size_t count) {
+std::vector<Eigen::Vector3d> read_rows3(const h5::Reader& r, const std::string& path,
+                                        std::size_t count) {
   const h5::MatrixXdR m = r.read_matrix(path, static_cast<Eigen::Index>(count), 3);
   std::vector<Eigen::Vector3d> out(count);
-  for (std::size_t i = 0; i < count; ++i) out[i] = m.row(static_cast<Eigen::Index>(i)).transpose();
+  for (std::size_t i = 0; i < count; ++i)
+    out[i] = m.row(static_cast<Eigen::Index>(i)).transpose();
   return out;
 }
 
 std::vector<Vector6> read_rows6(const h5::Reader& r, const std::string& path, std::size_t count) {
   const h5::MatrixXdR m = r.read_matrix(path, static_cast<Eigen::Index>(count), 6);
   std::vector<Vector6> out(count);
-  for (std::size_t i = 0; i < count; ++i) out[i] = m.row(static_cast<Eigen::Index>(i)).transpose();
+  for (std::size_t i = 0; i < count; ++i)
+    out[i] = m.row(static_cast<Eigen::Index>(i)).transpose();
   return out;
 }
 
 // (steps, nodes, 3) stacks: /history/displacement, /modes/displacement.
-std::vector<std::vector<Eigen::Vector3d>> read_snapshots(const h5::Reader& r, const std::string& path,
-                                                        std::size_t steps, std::size_t nodes) {
+std::vector<std::vector<Eigen::Vector3d>> read_snapshots(const h5::Reader& r,
+                                                         const std::string& path, std::size_t steps,
+                                                         std::size_t nodes) {
   std::vector<std::size_t> shape;
   const std::vector<double> values = r.read_f64(path, &shape);
   if (shape != std::vector<std::size_t>{steps, nodes, 3})
@@ -76,10 +83,12 @@ void read_flaps(const h5::Reader& r, Structure& s) {
     StructureFlap f;
     f.name = name;
     f.nodes = r.read_index_vector(g + "/nodes", std::nullopt, 0, node_count);
-    if (f.nodes.size() < 2) r.fail(g + "/nodes", "fewer than two beam nodes");
+    if (f.nodes.size() < 2)
+      r.fail(g + "/nodes", "fewer than two beam nodes");
     f.segments = r.read_index_vector(g + "/segments", std::nullopt, 0, segment_count);
     for (std::size_t k = 1; k < f.segments.size(); ++k) {
-      if (s.segments[static_cast<std::size_t>(f.segments[k - 1])][1] != s.segments[static_cast<std::size_t>(f.segments[k])][0])
+      if (s.segments[static_cast<std::size_t>(f.segments[k - 1])][1] !=
+          s.segments[static_cast<std::size_t>(f.segments[k])][0])
         r.fail(g + "/segments", "segment " + std::to_string(k) + " does not start where segment " +
                                     std::to_string(k - 1) + " ends");
     }
@@ -88,7 +97,8 @@ void read_flaps(const h5::Reader& r, Structure& s) {
 }
 
 void read_joints(const h5::Reader& r, Structure& s) {
-  if (!r.is_group("/joints")) return;
+  if (!r.is_group("/joints"))
+    return;
   for (const std::string& name : r.children("/joints")) {
     const std::string g = "/joints/" + name;
     StructureJoint j;
@@ -97,7 +107,8 @@ void read_joints(const h5::Reader& r, Structure& s) {
     j.reaction = Eigen::Map<const Vector6>(reaction.data());
     for (const auto& [scalar, units] : joint_scalar_units()) {
       (void)units;
-      if (r.exists(g + "/" + scalar)) j.scalars[scalar] = r.read_vector(g + "/" + scalar, 1)[0];
+      if (r.exists(g + "/" + scalar))
+        j.scalars[scalar] = r.read_vector(g + "/" + scalar, 1)[0];
     }
     if (r.exists(g + "/deformation")) {
       const std::vector<double> d = r.read_vector(g + "/deformation", 6);
@@ -108,17 +119,20 @@ void read_joints(const h5::Reader& r, Structure& s) {
 }
 
 void read_restart(const h5::Reader& r, Structure& s) {
-  if (!r.exists("/restart/velocity")) return;
+  if (!r.exists("/restart/velocity"))
+    return;
   const std::size_t n = s.points.size();
   StructureRestart restart;
   restart.velocity = read_rows3(r, "/restart/velocity", n);
-  if (!r.exists("/restart/angular_velocity")) r.fail("/restart", "angular_velocity missing beside velocity");
+  if (!r.exists("/restart/angular_velocity"))
+    r.fail("/restart", "angular_velocity missing beside velocity");
   restart.angular_velocity = read_rows3(r, "/restart/angular_velocity", n);
   if (r.exists("/restart/joint_dofs")) {
     restart.joint_dofs = r.read_vector("/restart/joint_dofs");
     restart.joint_rates = r.read_vector("/restart/joint_rates", restart.joint_dofs.size());
   }
-  if (r.has_attr("/restart", "time")) restart.time = r.attr_f64("/restart", "time");
+  if (r.has_attr("/restart", "time"))
+    restart.time = r.attr_f64("/restart", "time");
   s.restart = std::move(restart);
 }
 
@@ -126,7 +140,8 @@ void read_restart(const h5::Reader& r, Structure& s) {
 
 const StructureFlap* Structure::find_flap(const std::string& name) const {
   for (const StructureFlap& f : flaps)
-    if (f.name == name) return &f;
+    if (f.name == name)
+      return &f;
   return nullptr;
 }
 
@@ -134,7 +149,8 @@ void Structure::fail(const std::string& object_path, const std::string& what) co
   throw BadInput(source.string() + ": " + object_path + ": " + what);
 }
 
-void write_structure(const std::filesystem::path& file, const Structure& s, const Provenance& provenance) {
+void write_structure(const std::filesystem::path& file, const Structure& s,
+                     const Provenance& provenance) {
   h5::Writer w(file);
   write_header(w, "structure", s.header);
   w.set_attr("/", "analysis", s.analysis);
@@ -156,34 +172,42 @@ void write_structure(const std::filesystem::path& file, const Structure& s, cons
   }
   for (const StructureJoint& j : s.joints) {
     const std::string g = "/joints/" + j.name;
-    w.write(g + "/reaction", std::vector<double>(j.reaction.data(), j.reaction.data() + 6), "N, N m",
-            "force and moment on the structure from the joint");
+    w.write(g + "/reaction", std::vector<double>(j.reaction.data(), j.reaction.data() + 6),
+            "N, N m", "force and moment on the structure from the joint");
     for (const auto& [name, value] : j.scalars) {
       const auto units = joint_scalar_units().find(name);
-      if (units == joint_scalar_units().end()) throw InternalError("structure: unknown joint output '" + name + "'");
+      if (units == joint_scalar_units().end())
+        throw InternalError("structure: unknown joint output '" + name + "'");
       w.write(g + "/" + name, std::vector<double>{value}, units->second);
     }
     if (j.deformation)
-      w.write(g + "/deformation", std::vector<double>(j.deformation->data(), j.deformation->data() + 6), "m, 1",
+      w.write(g + "/deformation",
+              std::vector<double>(j.deformation->data(), j.deformation->data() + 6), "m, 1",
               "stretch (3) and wryness (3) in the joint frame");
   }
   const std::size_t n = s.points.size();
   if (!s.history_time.empty()) {
     w.write("/history/time", s.history_time, "s");
-    w.write_array("/history/displacement", flat(s.history_displacement), {s.history_time.size(), n, 3}, "m");
+    w.write_array("/history/displacement", flat(s.history_displacement),
+                  {s.history_time.size(), n, 3}, "m");
   }
   if (!s.mode_frequency.empty()) {
-    w.write("/modes/frequency", s.mode_frequency, "Hz", "natural frequencies about the reference state");
-    w.write_array("/modes/displacement", flat(s.mode_displacement), {s.mode_frequency.size(), n, 3}, "1",
-                  "nodal translations of each mode, divided by the largest entry of the mode vector");
+    w.write("/modes/frequency", s.mode_frequency, "Hz",
+            "natural frequencies about the reference state");
+    w.write_array(
+        "/modes/displacement", flat(s.mode_displacement), {s.mode_frequency.size(), n, 3}, "1",
+        "nodal translations of each mode, divided by the largest entry of the mode vector");
   }
   if (s.restart) {
-    w.write("/restart/velocity", rows(s.restart->velocity), "m/s", "nodal velocity at the end of the run");
+    w.write("/restart/velocity", rows(s.restart->velocity), "m/s",
+            "nodal velocity at the end of the run");
     w.write("/restart/angular_velocity", rows(s.restart->angular_velocity), "rad/s",
             "nodal angular velocity, material frame");
     if (!s.restart->joint_dofs.empty()) {
-      w.write("/restart/joint_dofs", s.restart->joint_dofs, "rad", "joint unknowns (e.g. revolute relative angles)");
-      w.write("/restart/joint_rates", s.restart->joint_rates, "rad/s", "rates of the joint unknowns");
+      w.write("/restart/joint_dofs", s.restart->joint_dofs, "rad",
+              "joint unknowns (e.g. revolute relative angles)");
+      w.write("/restart/joint_rates", s.restart->joint_rates, "rad/s",
+              "rates of the joint unknowns");
     }
     w.set_attr("/restart", "time", s.restart->time);
   }
@@ -202,8 +226,10 @@ Structure read_structure(const std::filesystem::path& file) {
   const h5::MatrixXdR points = r.read_matrix("/beam/points", std::nullopt, 3);
   const auto n = static_cast<std::size_t>(points.rows());
   s.points = read_rows3(r, "/beam/points", n);
-  const h5::MatrixXiR segments = r.read_index_matrix("/beam/segments", std::nullopt, 2, 0, static_cast<std::int64_t>(n));
-  for (Eigen::Index k = 0; k < segments.rows(); ++k) s.segments.push_back({segments(k, 0), segments(k, 1)});
+  const h5::MatrixXiR segments =
+      r.read_index_matrix("/beam/segments", std::nullopt, 2, 0, static_cast<std::int64_t>(n));
+  for (Eigen::Index k = 0; k < segments.rows(); ++k)
+    s.segments.push_back({segments(k, 0), segments(k, 1)});
   s.displacement = read_rows3(r, "/fields/point/displacement", n);
   s.rotation = read_rows3(r, "/fields/point/rotation", n);
   s.sectional_strain = read_rows6(r, "/fields/cell/sectional_strain", s.segments.size());

@@ -10,8 +10,8 @@
 #include "tfmb/common/h5.hpp"
 #include "tfmb/formats/loads.hpp"
 #include "tfmb/formats/model.hpp"
-#include "tfmb/formats/structure.hpp"
 #include "tfmb/formats/schema.hpp"
+#include "tfmb/formats/structure.hpp"
 
 namespace tfmb::loads {
 

@@ -8,8 +8,8 @@
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
 #include "tfmb/formats/materials.hpp"
-#include "tfmb/formats/structure.hpp"
 #include "tfmb/formats/schema.hpp"
+#include "tfmb/formats/structure.hpp"
 
 namespace tfmb::strain {
 

@@ -19,8 +19,8 @@
 #include "tfmb/formats/loads.hpp"
 #include "tfmb/formats/materials.hpp"
 #include "tfmb/formats/model.hpp"
-#include "tfmb/formats/structure.hpp"
 #include "tfmb/formats/schema.hpp"
+#include "tfmb/formats/structure.hpp"
 
 namespace tfmb::beam {
 namespace {
@@ -321,7 +321,8 @@ void write_structure(const Options& options, const FileModel& fm, const Assembly
     formats::StructureFlap flap;
     flap.name = name;
     flap.nodes.assign(fm.flap_nodes.at(name).begin(), fm.flap_nodes.at(name).end());
-    for (int e : fm.flap_elements.at(name)) flap.segments.insert(flap.segments.end(), {2 * e, 2 * e + 1});
+    for (int e : fm.flap_elements.at(name))
+      flap.segments.insert(flap.segments.end(), {2 * e, 2 * e + 1});
     out.flaps.push_back(std::move(flap));
   }
   for (std::size_t j = 0; j < m.joints.size(); ++j) {
@@ -331,27 +332,33 @@ void write_structure(const Options& options, const FileModel& fm, const Assembly
     const auto outputs = asmb.joint_outputs(state, static_cast<int>(j));
     auto get = [&](const std::string& key) -> std::optional<double> {
       for (const auto& o : outputs)
-        if (o.name == key) return o.value;
+        if (o.name == key)
+          return o.value;
       return std::nullopt;
     };
     const char* reaction_keys[] = {"reaction_force_x",  "reaction_force_y",  "reaction_force_z",
                                    "reaction_moment_x", "reaction_moment_y", "reaction_moment_z"};
-    for (int k = 0; k < 6; ++k) joint.reaction(k) = get(reaction_keys[k]).value_or(0.0);
+    for (int k = 0; k < 6; ++k)
+      joint.reaction(k) = get(reaction_keys[k]).value_or(0.0);
     for (const char* key : {"relative_rotation", "contact_force", "gap", "sliding"})
-      if (const auto v = get(key)) joint.scalars[key] = *v;
+      if (const auto v = get(key))
+        joint.scalars[key] = *v;
     if (m.joints[j].kind == JointKind::flexible) {
       const char* names[] = {"stretch_1", "stretch_2", "stretch_3", "wryness_1", "wryness_2", "wryness_3"};
       formats::Vector6 deformation;
-      for (int k = 0; k < 6; ++k) deformation(k) = get(names[k]).value_or(0.0);
+      for (int k = 0; k < 6; ++k)
+        deformation(k) = get(names[k]).value_or(0.0);
       joint.deformation = deformation;
-      if (const auto v = get("strain_energy")) joint.scalars["strain_energy"] = *v;
+      if (const auto v = get("strain_energy"))
+        joint.scalars["strain_energy"] = *v;
     }
     out.joints.push_back(std::move(joint));
   }
   out.history_time = times;
   for (const auto& snapshot : history) {
     std::vector<Eigen::Vector3d> displacement(n);
-    for (std::size_t i = 0; i < n; ++i) displacement[i] = snapshot[i] - m.nodes[i].position;
+    for (std::size_t i = 0; i < n; ++i)
+      displacement[i] = snapshot[i] - m.nodes[i].position;
     out.history_displacement.push_back(std::move(displacement));
   }
   if (modes) {
@@ -361,7 +368,8 @@ void write_structure(const Options& options, const FileModel& fm, const Assembly
       const double peak = modes->mode_shapes.col(k).cwiseAbs().maxCoeff();
       std::vector<Eigen::Vector3d> shape(n);
       for (std::size_t i = 0; i < n; ++i)
-        shape[i] = modes->mode_shapes.block<3, 1>(6 * static_cast<Eigen::Index>(i), k) / (peak > 0 ? peak : 1.0);
+        shape[i] = modes->mode_shapes.block<3, 1>(6 * static_cast<Eigen::Index>(i), k) /
+                   (peak > 0 ? peak : 1.0);
       out.mode_displacement.push_back(std::move(shape));
     }
   }
@@ -371,8 +379,10 @@ void write_structure(const Options& options, const FileModel& fm, const Assembly
     formats::StructureRestart restart;
     restart.velocity = motion->velocity;
     restart.angular_velocity = motion->angular_velocity;
-    restart.joint_dofs.assign(state.joint_dofs.data(), state.joint_dofs.data() + state.joint_dofs.size());
-    restart.joint_rates.assign(motion->joint_rates.data(), motion->joint_rates.data() + motion->joint_rates.size());
+    restart.joint_dofs.assign(state.joint_dofs.data(),
+                              state.joint_dofs.data() + state.joint_dofs.size());
+    restart.joint_rates.assign(motion->joint_rates.data(),
+                               motion->joint_rates.data() + motion->joint_rates.size());
     restart.time = end_time;
     out.restart = std::move(restart);
   }
@@ -398,12 +408,16 @@ void continue_from(const std::filesystem::path& file, const FileModel& fm, const
   const formats::Structure earlier = formats::read_structure(file);
   const Model& m = fm.model;
   const std::size_t n = m.nodes.size();
-  if (!earlier.restart) earlier.fail("/restart", "missing: the file is not from a dynamic run");
+  if (!earlier.restart)
+    earlier.fail("/restart", "missing: the file is not from a dynamic run");
   if (earlier.points.size() != n)
-    earlier.fail("/beam/points", std::to_string(earlier.points.size()) + " nodes, the model has " + std::to_string(n));
+    earlier.fail("/beam/points", std::to_string(earlier.points.size()) + " nodes, the model has " +
+                                     std::to_string(n));
   for (std::size_t i = 0; i < n; ++i) {
-    if ((earlier.points[i] - m.nodes[i].position).norm() > 1e-9 * (1.0 + m.nodes[i].position.norm()))
-      earlier.fail("/beam/points", "node " + std::to_string(i) + " is not where the model puts it: another model");
+    if ((earlier.points[i] - m.nodes[i].position).norm() >
+        1e-9 * (1.0 + m.nodes[i].position.norm()))
+      earlier.fail("/beam/points",
+                   "node " + std::to_string(i) + " is not where the model puts it: another model");
   }
   for (std::size_t i = 0; i < n; ++i) {
     state.position[i] = m.nodes[i].position + earlier.displacement[i];
@@ -414,7 +428,8 @@ void continue_from(const std::filesystem::path& file, const FileModel& fm, const
   if (nj > 0) {
     if (earlier.restart->joint_dofs.size() != nj)
       earlier.fail("/restart/joint_dofs", std::to_string(earlier.restart->joint_dofs.size()) +
-                                              " joint unknowns, the model has " + std::to_string(nj));
+                                              " joint unknowns, the model has " +
+                                              std::to_string(nj));
     const auto& dofs = earlier.restart->joint_dofs;
     const auto& rates = earlier.restart->joint_rates;
     state.joint_dofs = Eigen::Map<const Eigen::VectorXd>(dofs.data(), static_cast<Eigen::Index>(nj));

@@ -48,15 +48,15 @@ struct Structure {
   Header header;
   std::string analysis;  // static | dynamic | modal
   bool converged = false;
-  std::vector<Eigen::Vector3d> points;                 // [m] node reference positions
-  std::vector<std::array<std::int64_t, 2>> segments;   // display segments (node pairs)
-  std::vector<Eigen::Vector3d> displacement;           // [m] per node
-  std::vector<Eigen::Vector3d> rotation;               // Wiener-Milenkovic parameters per node
-  std::vector<Vector6> sectional_strain;               // per segment [1, 1/m]
-  std::vector<Vector6> sectional_force;                // per segment [N, N m]
-  std::vector<StructureFlap> flaps;                    // by name
-  std::vector<StructureJoint> joints;                  // by name
-  std::vector<double> history_time;                                // [s] dynamic
+  std::vector<Eigen::Vector3d> points;                // [m] node reference positions
+  std::vector<std::array<std::int64_t, 2>> segments;  // display segments (node pairs)
+  std::vector<Eigen::Vector3d> displacement;          // [m] per node
+  std::vector<Eigen::Vector3d> rotation;              // Wiener-Milenkovic parameters per node
+  std::vector<Vector6> sectional_strain;              // per segment [1, 1/m]
+  std::vector<Vector6> sectional_force;               // per segment [N, N m]
+  std::vector<StructureFlap> flaps;                   // by name
+  std::vector<StructureJoint> joints;                 // by name
+  std::vector<double> history_time;                   // [s] dynamic
   std::vector<std::vector<Eigen::Vector3d>> history_displacement;  // [step][node] [m]
   std::vector<double> mode_frequency;                              // [Hz] modal
   std::vector<std::vector<Eigen::Vector3d>> mode_displacement;     // [mode][node], normalised
@@ -68,7 +68,8 @@ struct Structure {
 };
 
 // Writes structure.h5 atomically and its XDMF sidecar.
-void write_structure(const std::filesystem::path& file, const Structure& structure, const Provenance& provenance);
+void write_structure(const std::filesystem::path& file, const Structure& structure,
+                     const Provenance& provenance);
 // Reads and validates a structure file (BadInput naming the file and the object on any problem).
 Structure read_structure(const std::filesystem::path& file);
 
