@@ -3,18 +3,26 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tfmb/common/assert.hpp"
+
 namespace tfmb::geometry {
 
 std::vector<double> cumulative_length(const Polyline& line) {
   std::vector<double> s(line.size(), 0.0);
-  for (std::size_t i = 1; i < line.size(); ++i) s[i] = s[i - 1] + (line[i] - line[i - 1]).norm();
+  for (std::size_t i = 1; i < line.size(); ++i)
+    s[i] = s[i - 1] + (line[i] - line[i - 1]).norm();
   return s;
 }
 
 double interpolate(const std::vector<double>& x, const std::vector<double>& y, double at) {
-  if (x.empty()) return 0.0;
-  if (at <= x.front()) return y.front();
-  if (at >= x.back()) return y.back();
+  // x and y are the two columns of one table that the caller built together.
+  TFMB_ASSERT(x.size() == y.size(), x.size() << " abscissae but " << y.size() << " values");
+  if (x.empty())
+    return 0.0;
+  if (at <= x.front())
+    return y.front();
+  if (at >= x.back())
+    return y.back();
   const auto upper = std::upper_bound(x.begin(), x.end(), at);
   const std::size_t i = static_cast<std::size_t>(upper - x.begin());
   const double w = (at - x[i - 1]) / (x[i] - x[i - 1]);
@@ -22,7 +30,8 @@ double interpolate(const std::vector<double>& x, const std::vector<double>& y, d
 }
 
 Point point_at_length(const Polyline& line, double s) {
-  if (line.empty()) return Point::Zero();
+  if (line.empty())
+    return Point::Zero();
   double walked = 0.0;
   for (std::size_t i = 1; i < line.size(); ++i) {
     const double length = (line[i] - line[i - 1]).norm();
@@ -40,7 +49,8 @@ double distance_to_segment(const Point& p, const Point& a, const Point& b, doubl
   const double length2 = ab.squaredNorm();
   double u = length2 > 0.0 ? (p - a).dot(ab) / length2 : 0.0;
   u = std::clamp(u, 0.0, 1.0);
-  if (t) *t = u;
+  if (t)
+    *t = u;
   return (p - (a + u * ab)).norm();
 }
 
@@ -51,10 +61,12 @@ std::optional<Point> segment_intersection(const Point& a0, const Point& a1, cons
   const double denominator = r.x() * s.y() - r.y() * s.x();
   const Point q = b0 - a0;
   const double scale = std::max({r.norm(), s.norm(), 1e-300});
-  if (std::abs(denominator) <= 1e-14 * scale * scale) return std::nullopt;  // parallel
+  if (std::abs(denominator) <= 1e-14 * scale * scale)
+    return std::nullopt;  // parallel
   const double t = (q.x() * s.y() - q.y() * s.x()) / denominator;
   const double u = (q.x() * r.y() - q.y() * r.x()) / denominator;
-  if (t < 0.0 || t > 1.0 || u < 0.0 || u > 1.0) return std::nullopt;
+  if (t < 0.0 || t > 1.0 || u < 0.0 || u > 1.0)
+    return std::nullopt;
   return a0 + t * r;
 }
 

@@ -6,6 +6,8 @@
 #include <string>
 #include <type_traits>
 
+#include "tfmb/common/assert.hpp"
+
 namespace tfmb::flow {
 
 namespace {
@@ -236,6 +238,7 @@ bool invert_block(const double* a, double* inv, int size) {
 }
 
 int BlockSparseMatrix::find(int row, int column) const {
+  TFMB_ASSERT(row >= 0 && row < num_rows, "row " << row << " of a matrix of " << num_rows);
   const auto first = col.begin() + row_ptr[row];
   const auto last = col.begin() + row_ptr[row + 1];
   const auto it = std::lower_bound(first, last, column);
@@ -349,8 +352,13 @@ void BlockIlu0::build_fill_pattern(const BlockSparseMatrix& a) {
   }
   scatter_.resize(a.col.size());
   for (int i = 0; i < n; ++i) {
-    for (int p = a.row_ptr[i]; p < a.row_ptr[i + 1]; ++p)
+    for (int p = a.row_ptr[i]; p < a.row_ptr[i + 1]; ++p) {
       scatter_[p] = lu_.find(i, a.col[p]);
+      // every row starts from all of its matrix entries (level 0), so each one has a place; a
+      // missing one would make factorize() copy its block to a negative offset
+      TFMB_ASSERT(scatter_[p] >= 0,
+                  "ILU fill pattern lacks the matrix block (" << i << ", " << a.col[p] << ")");
+    }
   }
   pattern_row_ptr_ = a.row_ptr;
   pattern_col_ = a.col;

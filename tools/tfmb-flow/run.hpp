@@ -57,6 +57,9 @@ struct RunOptions {
   TimeAccurateSettings time;
   SolverSettings settings;
   std::string command_line;
+  // Every command-line option's value as TOML (cli::OptionTable::settings_toml), for
+  // /provenance@settings; empty for in-process callers.
+  std::string settings_toml;
 };
 
 struct RunResult {

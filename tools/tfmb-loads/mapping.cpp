@@ -1,9 +1,10 @@
 #include "mapping.hpp"
+#include "tfmb/common/assert.hpp"
 #include "tfmb/common/quadrature.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
-#include <algorithm>
 
 namespace tfmb::loads {
 
@@ -62,7 +63,8 @@ std::vector<Eigen::Vector3d> solve_mass(const BeamLine& beam,
   }
   std::vector<Eigen::Vector3d> x(n);
   x[n - 1] = d[n - 1];
-  for (std::size_t i = n - 1; i-- > 0;) x[i] = d[i] - c[i] * x[i + 1];
+  for (std::size_t i = n - 1; i-- > 0;)
+    x[i] = d[i] - c[i] * x[i + 1];
   return x;
 }
 
@@ -81,13 +83,15 @@ FlapLoads map_conservative(const BeamLine& beam, const std::vector<const WallTra
       for (std::size_t i = 0; i < n; ++i) {
         const double f0 = beam.node_line_distance(i, p0);
         const double f1 = beam.node_line_distance(i, p1);
-        if ((f0 < 0.0 && f1 > 0.0) || (f0 > 0.0 && f1 < 0.0)) cuts.push_back(f0 / (f0 - f1));
+        if ((f0 < 0.0 && f1 > 0.0) || (f0 > 0.0 && f1 < 0.0))
+          cuts.push_back(f0 / (f0 - f1));
       }
       std::sort(cuts.begin(), cuts.end());
       for (std::size_t c = 0; c + 1 < cuts.size(); ++c) {
         const double ua = cuts[c];
         const double ub = cuts[c + 1];
-        if (!(ub > ua)) continue;
+        if (!(ub > ua))
+          continue;
         static const auto gauss_2 = quadrature::gauss_legendre_unit(2);  // on [0, 1]
         for (const auto& [g, w] : gauss_2) {
           const double u = ua + g * (ub - ua);
@@ -95,6 +99,9 @@ FlapLoads map_conservative(const BeamLine& beam, const std::vector<const WallTra
           const Vec2 x = trace->position(k, u);
           const Vec2 t = trace->traction(k, u);
           const BeamProjection b = beam.project(x);
+          // project() picks one of the beam's elements, so both of its nodes exist
+          TFMB_ASSERT(b.element + 1 < n,
+                      "projection on element " << b.element << " of a beam of " << n << " nodes");
           const double offset_moment = cross(x - b.point, t);
           const Eigen::Vector3d load(t.x(), t.y(), offset_moment);
           nodal[b.element] += (1.0 - b.xi) * weight * load;
@@ -131,9 +138,11 @@ FlapLoads map_linear(const BeamLine& beam, const std::vector<const WallTrace*>& 
   for (Side side : {Side::inner, Side::outer}) {
     std::vector<const WallTrace*> side_traces;
     for (const WallTrace* t : traces) {
-      if (t->side == side) side_traces.push_back(t);
+      if (t->side == side)
+        side_traces.push_back(t);
     }
-    if (side_traces.empty()) continue;
+    if (side_traces.empty())
+      continue;
     std::vector<WallSample> samples(n);
     for (std::size_t i = 0; i < n; ++i) {
       samples[i] = sample_at_node(beam, i, side_traces);
@@ -143,7 +152,8 @@ FlapLoads map_linear(const BeamLine& beam, const std::vector<const WallTrace*>& 
       }
     }
     for (std::size_t i = 0; i < n; ++i) {
-      if (!samples[i].found) continue;
+      if (!samples[i].found)
+        continue;
       // Ratio of wall to beam arc length around node i (chords between the wall points of
       // the neighbouring nodes): 1 for a wall parallel to a straight beam, R_wall / R_beam on
       // concentric arcs.
@@ -152,7 +162,8 @@ FlapLoads map_linear(const BeamLine& beam, const std::vector<const WallTrace*>& 
       double ratio = 1.0;
       if (hi > lo) {
         double wall = 0.0;
-        for (std::size_t a = lo; a < hi; ++a) wall += (samples[a + 1].point - samples[a].point).norm();
+        for (std::size_t a = lo; a < hi; ++a)
+          wall += (samples[a + 1].point - samples[a].point).norm();
         ratio = wall / (beam.arc_length()[hi] - beam.arc_length()[lo]);
       }
       const Vec2 q = width * ratio * samples[i].traction;
@@ -176,7 +187,8 @@ WallSample sample_at_node(const BeamLine& beam, std::size_t node,
     for (std::size_t k = 0; k < trace->segment_count(); ++k) {
       const double f0 = beam.node_line_distance(node, trace->points[k]);
       const double f1 = beam.node_line_distance(node, trace->points[k + 1]);
-      if ((f0 > 0.0 && f1 > 0.0) || (f0 < 0.0 && f1 < 0.0) || f0 == f1) continue;
+      if ((f0 > 0.0 && f1 > 0.0) || (f0 < 0.0 && f1 < 0.0) || f0 == f1)
+        continue;
       const double u = f0 / (f0 - f1);
       const Vec2 x = trace->position(k, u);
       const double distance = (x - r).norm();
@@ -211,8 +223,8 @@ WallSample sample_at_node(const BeamLine& beam, std::size_t node,
   return best;
 }
 
-FlapLoads map_loads(Method method, const BeamLine& beam, const std::vector<const WallTrace*>& traces,
-                    double width) {
+FlapLoads map_loads(Method method, const BeamLine& beam,
+                    const std::vector<const WallTrace*>& traces, double width) {
   FlapLoads out = method == Method::linear ? map_linear(beam, traces, width, nullptr)
                                            : map_conservative(beam, traces, width);
   Resultant r = integrate_traces(traces);
@@ -222,8 +234,8 @@ FlapLoads map_loads(Method method, const BeamLine& beam, const std::vector<const
   return out;
 }
 
-FlapLoads map_linear_exact(const BeamLine& beam, const std::vector<const WallTrace*>& traces, double width,
-                           const WallField& field) {
+FlapLoads map_linear_exact(const BeamLine& beam, const std::vector<const WallTrace*>& traces,
+                           double width, const WallField& field) {
   FlapLoads out = map_linear(beam, traces, width, &field);
   out.mapped = nodal_resultant(beam, out.nodal_force, out.nodal_moment);
   return out;

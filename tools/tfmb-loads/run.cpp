@@ -4,7 +4,6 @@
 #include <cmath>
 #include <iomanip>
 #include <map>
-#include <sstream>
 
 #include "expression.hpp"
 #include "tfmb/common/cli.hpp"
@@ -29,19 +28,23 @@ BeamLine make_beam(const ModelFlap& flap, const std::filesystem::path& model_fil
 struct FunctionField {
   std::map<std::string, Expression> fields;
   explicit FunctionField(const std::string& text) {
-    const std::vector<std::string> allowed = {"p", "tau", "p_inner", "p_outer", "tau_inner", "tau_outer"};
+    const std::vector<std::string> allowed = {"p",       "tau",       "p_inner",
+                                              "p_outer", "tau_inner", "tau_outer"};
     std::map<std::string, std::string> assignments;
     try {
       assignments = parse_assignments(text, allowed);
-      for (const auto& [name, expr] : assignments) fields.emplace(name, Expression(expr, {"x", "y"}));
+      for (const auto& [name, expr] : assignments)
+        fields.emplace(name, Expression(expr, {"x", "y"}));
     } catch (const std::invalid_argument& e) {
       throw UsageError(std::string("--function: ") + e.what());
     }
   }
   double value(const std::string& quantity, Side side, const Vec2& x) const {
     const std::string specific = quantity + (side == Side::inner ? "_inner" : "_outer");
-    if (auto it = fields.find(specific); it != fields.end()) return it->second({x.x(), x.y()});
-    if (auto it = fields.find(quantity); it != fields.end()) return it->second({x.x(), x.y()});
+    if (auto it = fields.find(specific); it != fields.end())
+      return it->second({x.x(), x.y()});
+    if (auto it = fields.find(quantity); it != fields.end())
+      return it->second({x.x(), x.y()});
     return 0.0;
   }
 };
@@ -74,7 +77,8 @@ WallTrace model_trace(const ModelFlap& flap, Side side, std::vector<Vec2> points
     trace.wall_shear.push_back(value("tau", x));
   }
   check_trace(trace);
-  const std::vector<Vec2>& opposite = model_wall(flap, side == Side::inner ? Side::outer : Side::inner);
+  const std::vector<Vec2>& opposite =
+      model_wall(flap, side == Side::inner ? Side::outer : Side::inner);
   orient_trace(trace, [&](const Vec2& x) { return closest_point(opposite, x); });
   return trace;
 }
@@ -87,7 +91,8 @@ void check_coverage(const BeamLine& beam, const ModelFlap& flap, Side side,
   for (const auto& [from, to] : c.gaps) {
     if (to - from > allowed) {
       std::string names;
-      for (const WallTrace* t : traces) names += (names.empty() ? "" : ", ") + t->name;
+      for (const WallTrace* t : traces)
+        names += (names.empty() ? "" : ", ") + t->name;
       throw BadInput(source + ": /walls/{" + names + "}: the " + side_name(side) +
                      " traces of flap '" + flap.name + "' leave beam arc length [" +
                      text::format_number(from) + ", " + text::format_number(to) + "] m of [0, " +
@@ -100,14 +105,15 @@ void check_coverage(const BeamLine& beam, const ModelFlap& flap, Side side,
 // Reference distributed loads for --diff: the linear method on the same traces with the field
 // evaluated exactly at the wall points facing the beam nodes (so only the trace sampling, or for
 // the conservative method the projection, is measured), and the exact totals.
-FlapLoads reference_loads(const BeamLine& beam, const ModelFlap& flap, const FunctionField& f, double width,
-                          const std::vector<const WallTrace*>& flap_traces) {
+FlapLoads reference_loads(const BeamLine& beam, const ModelFlap& flap, const FunctionField& f,
+                          double width, const std::vector<const WallTrace*>& flap_traces) {
   FlapLoads reference = map_linear_exact(beam, flap_traces, width, [&](Side side, const Vec2& x) {
     return std::pair{f.value("p", side, x), f.value("tau", side, x)};
   });
   std::vector<WallTrace> traces;
   for (Side side : {Side::inner, Side::outer}) {
-    traces.push_back(model_trace(flap, side, model_wall(flap, side), [](const std::string&, const Vec2&) { return 0.0; }));
+    traces.push_back(model_trace(flap, side, model_wall(flap, side),
+                                 [](const std::string&, const Vec2&) { return 0.0; }));
   }
   // Exact totals: five-point Gauss on each model wall segment cut in 64 pieces.
   Resultant exact;
@@ -135,13 +141,17 @@ FlapLoads reference_loads(const BeamLine& beam, const ModelFlap& flap, const Fun
 
 }  // namespace
 
-ForcesResult run_forces_unchecked(const ForcesOptions& options, const Logger& logger, std::ostream& out) {
+ForcesResult run_forces_unchecked(const ForcesOptions& options, const Logger& logger,
+                                  std::ostream& out) {
   const Model model = read_model(options.model_file);
   const bool use_function = !options.function.empty();
-  if (options.diff && !use_function) throw UsageError("--diff needs --function (the exact field)");
-  if (use_function && options.function_samples < 1) throw UsageError("--samples must be at least 1");
+  if (options.diff && !use_function)
+    throw UsageError("--diff needs --function (the exact field)");
+  if (use_function && options.function_samples < 1)
+    throw UsageError("--samples must be at least 1");
   std::optional<FunctionField> field;
-  if (use_function) field.emplace(options.function);
+  if (use_function)
+    field.emplace(options.function);
 
   ForcesResult result;
   result.loads.method = options.method;
@@ -152,8 +162,9 @@ ForcesResult run_forces_unchecked(const ForcesOptions& options, const Logger& lo
     result.loads.header = model.header;
     for (const ModelFlap& flap : model.flaps) {
       for (Side side : {Side::inner, Side::outer}) {
-        traces.push_back(model_trace(flap, side, refine(model_wall(flap, side), options.function_samples),
-                                     [&](const std::string& q, const Vec2& x) { return field->value(q, side, x); }));
+        traces.push_back(model_trace(
+            flap, side, refine(model_wall(flap, side), options.function_samples),
+            [&](const std::string& q, const Vec2& x) { return field->value(q, side, x); }));
       }
     }
   } else {
@@ -161,12 +172,14 @@ ForcesResult run_forces_unchecked(const ForcesOptions& options, const Logger& lo
     FlowTraces flow = read_flow_traces(options.flow_file, options.reference_mesh);
     result.loads.header = flow.header;
     traces = std::move(flow.traces);
-    for (const auto& name : flow.skipped) logger.verbose("wall trace " + name + " belongs to no flap; not mapped");
+    for (const auto& name : flow.skipped)
+      logger.verbose("wall trace " + name + " belongs to no flap; not mapped");
   }
   result.loads.header.creator = "tfmb-loads " + cli::version();
   if (result.loads.header.geometry != "planar") {
-    logger.warn(source + ": geometry '" + result.loads.header.geometry +
-                "': flap loads are computed as for a planar nozzle (per unit depth times the flap width)");
+    logger.warn(
+        source + ": geometry '" + result.loads.header.geometry +
+        "': flap loads are computed as for a planar nozzle (per unit depth times the flap width)");
   }
   result.loads.load_basis =
       "per unit beam length over the flap width (flow traces are per unit depth " +
@@ -175,11 +188,12 @@ ForcesResult run_forces_unchecked(const ForcesOptions& options, const Logger& lo
 
   // Every trace must belong to a model flap.
   std::map<std::string, const ModelFlap*> by_name;
-  for (const ModelFlap& flap : model.flaps) by_name[flap.name] = &flap;
+  for (const ModelFlap& flap : model.flaps)
+    by_name[flap.name] = &flap;
   for (const WallTrace& t : traces) {
     if (!by_name.count(t.flap)) {
-      throw BadInput(source + ": /mesh/boundaries/" + t.name + ": flap '" + t.flap + "' is not in " +
-                     options.model_file.string());
+      throw BadInput(source + ": /mesh/boundaries/" + t.name + ": flap '" + t.flap +
+                     "' is not in " + options.model_file.string());
     }
   }
   // Dry sides loaded by a uniform pressure on request.
@@ -189,25 +203,30 @@ ForcesResult run_forces_unchecked(const ForcesOptions& options, const Logger& lo
       const bool present = std::any_of(traces.begin(), traces.end(), [&](const WallTrace& t) {
         return t.flap == flap.name && t.side == side;
       });
-      if (present) continue;
+      if (present)
+        continue;
       if (!options.missing_side_pressure) {
-        throw BadInput(source + ": /walls: flap '" + flap.name + "' has no " + side_name(side) +
-                       " trace (a wall boundary with flap=" + flap.name + " side=" + side_name(side) +
-                       "); give --missing-side-pressure to load a dry side with a uniform pressure");
+        throw BadInput(
+            source + ": /walls: flap '" + flap.name + "' has no " + side_name(side) +
+            " trace (a wall boundary with flap=" + flap.name + " side=" + side_name(side) +
+            "); give --missing-side-pressure to load a dry side with a uniform pressure");
       }
       const double p = *options.missing_side_pressure;
       logger.warn("flap " + flap.name + ": no " + side_name(side) + " trace; uniform pressure " +
                   text::format_number(p) + " Pa on the model's " + side_name(side) + " wall");
-      extra.push_back(model_trace(flap, side, model_wall(flap, side),
-                                  [&](const std::string& q, const Vec2&) { return q == "p" ? p : 0.0; }));
+      extra.push_back(
+          model_trace(flap, side, model_wall(flap, side),
+                      [&](const std::string& q, const Vec2&) { return q == "p" ? p : 0.0; }));
     }
   }
-  for (auto& t : extra) traces.push_back(std::move(t));
+  for (auto& t : extra)
+    traces.push_back(std::move(t));
 
   out << "tfmb-loads forces (" << method_name(options.method) << "), loads over the flap width\n";
-  out << std::left << std::setw(14) << "flap" << std::right << std::setw(14) << "Fx [N]" << std::setw(14)
-      << "Fy [N]" << std::setw(14) << "Mz [N m]" << std::setw(14) << "mapped Fx" << std::setw(14)
-      << "mapped Fy" << std::setw(14) << "mapped Mz" << std::setw(12) << "rel.diff" << "\n";
+  out << std::left << std::setw(14) << "flap" << std::right << std::setw(14) << "Fx [N]"
+      << std::setw(14) << "Fy [N]" << std::setw(14) << "Mz [N m]" << std::setw(14) << "mapped Fx"
+      << std::setw(14) << "mapped Fy" << std::setw(14) << "mapped Mz" << std::setw(12) << "rel.diff"
+      << "\n";
   for (const ModelFlap& flap : model.flaps) {
     const BeamLine beam = make_beam(flap, options.model_file);
     std::vector<const WallTrace*> flap_traces;
@@ -236,7 +255,8 @@ ForcesResult run_forces_unchecked(const ForcesOptions& options, const Logger& lo
     for (Side side : {Side::inner, Side::outer}) {
       std::vector<const WallTrace*> side_traces;
       for (const WallTrace* t : flap_traces) {
-        if (t->side == side) side_traces.push_back(t);
+        if (t->side == side)
+          side_traces.push_back(t);
       }
       check_coverage(beam, flap, side, side_traces, options.coverage_tolerance, source);
     }
@@ -247,16 +267,19 @@ ForcesResult run_forces_unchecked(const ForcesOptions& options, const Logger& lo
     const double rel = std::max((l.mapped.force - l.traces.force).norm() / scale_f,
                                 std::abs(l.mapped.moment - l.traces.moment) / scale_m);
     out << std::left << std::setw(14) << flap.name << std::right << std::setprecision(6)
-        << std::setw(14) << l.traces.force.x() << std::setw(14) << l.traces.force.y() << std::setw(14)
-        << l.traces.moment << std::setw(14) << l.mapped.force.x() << std::setw(14) << l.mapped.force.y()
-        << std::setw(14) << l.mapped.moment << std::setw(12) << std::setprecision(3) << rel << "\n";
+        << std::setw(14) << l.traces.force.x() << std::setw(14) << l.traces.force.y()
+        << std::setw(14) << l.traces.moment << std::setw(14) << l.mapped.force.x() << std::setw(14)
+        << l.mapped.force.y() << std::setw(14) << l.mapped.moment << std::setw(12)
+        << std::setprecision(3) << rel << "\n";
     if (options.diff) {
       const FlapLoads ref = reference_loads(beam, flap, *field, flap.width, flap_traces);
       FlapDiff d;
       for (std::size_t i = 0; i < beam.node_count(); ++i) {
-        d.max_distributed_force_error = std::max(
-            d.max_distributed_force_error, (l.distributed_force[i] - ref.distributed_force[i]).norm());
-        d.max_distributed_force = std::max(d.max_distributed_force, ref.distributed_force[i].norm());
+        d.max_distributed_force_error =
+            std::max(d.max_distributed_force_error,
+                     (l.distributed_force[i] - ref.distributed_force[i]).norm());
+        d.max_distributed_force =
+            std::max(d.max_distributed_force, ref.distributed_force[i].norm());
       }
       const double fs = std::max(ref.traces.force.norm(), 1e-300);
       d.force_error = (l.mapped.force - ref.traces.force).norm() / fs;
@@ -280,24 +303,23 @@ ForcesResult run_forces_unchecked(const ForcesOptions& options, const Logger& lo
   }
   formats::Provenance provenance;
   provenance.command_line = options.command_line;
-  std::ostringstream settings;
-  settings << "command = \"forces\"\nmethod = \"" << method_name(options.method) << "\"\n"
-           << "coverage_tolerance = " << options.coverage_tolerance << "\n";
-  if (use_function) settings << "function = \"" << options.function << "\"\nsamples = " << options.function_samples << "\n";
-  if (options.missing_side_pressure) settings << "missing_side_pressure = " << *options.missing_side_pressure << "\n";
-  provenance.settings = settings.str();
-  if (!use_function) provenance.inputs.push_back(options.flow_file);
+  provenance.settings = options.settings_toml;
+  if (!use_function)
+    provenance.inputs.push_back(options.flow_file);
   provenance.inputs.push_back(options.model_file);
   write_loads(options.output, result.loads, provenance);
-  logger.summary("wrote " + options.output.string() + ": " + std::to_string(result.loads.flaps.size()) +
-                 " flaps, method " + method_name(options.method));
+  logger.summary("wrote " + options.output.string() + ": " +
+                 std::to_string(result.loads.flaps.size()) + " flaps, method " +
+                 method_name(options.method));
   return result;
 }
 
-DisplaceResult run_displace_unchecked(const DisplaceOptions& options, const Logger& logger, std::ostream& out) {
+DisplaceResult run_displace_unchecked(const DisplaceOptions& options, const Logger& logger,
+                                      std::ostream& out) {
   const Model model = read_model(options.model_file);
   const bool use_function = !options.function.empty();
-  if (options.diff && !use_function) throw UsageError("--diff needs --function (the exact field)");
+  if (options.diff && !use_function)
+    throw UsageError("--diff needs --function (the exact field)");
   std::map<std::string, Expression> field;
   if (use_function) {
     try {
@@ -329,7 +351,8 @@ DisplaceResult run_displace_unchecked(const DisplaceOptions& options, const Logg
     header = structure.header;
     const std::string sfile = options.structure_file.string();
     for (const auto& [name, sflap] : structure.flaps) {
-      if (std::none_of(model.flaps.begin(), model.flaps.end(), [&](const ModelFlap& f) { return f.name == name; })) {
+      if (std::none_of(model.flaps.begin(), model.flaps.end(),
+                       [&](const ModelFlap& f) { return f.name == name; })) {
         throw BadInput(sfile + ": /flaps/" + name + ": flap not in " + options.model_file.string() +
                        " (mismatched model and structure files)");
       }
@@ -337,7 +360,8 @@ DisplaceResult run_displace_unchecked(const DisplaceOptions& options, const Logg
     for (const ModelFlap& flap : model.flaps) {
       auto it = structure.flaps.find(flap.name);
       if (it == structure.flaps.end()) {
-        throw BadInput(sfile + ": /flaps: flap '" + flap.name + "' of " + options.model_file.string() +
+        throw BadInput(sfile + ": /flaps: flap '" + flap.name + "' of " +
+                       options.model_file.string() +
                        " is missing (mismatched model and structure files)");
       }
       const BeamLine reference = make_beam(flap, options.model_file);
@@ -345,10 +369,12 @@ DisplaceResult run_displace_unchecked(const DisplaceOptions& options, const Logg
       const auto& points = it->second.points;
       // Nodes of higher-order beam elements lie on the curve, not on the chords between the
       // model's beam nodes: compare with the full-resolution reference line where there is one.
-      const std::vector<Vec2>& line = flap.reference_geometry.size() >= 2 ? flap.reference_geometry : flap.reference_curve;
+      const std::vector<Vec2>& line =
+          flap.reference_geometry.size() >= 2 ? flap.reference_geometry : flap.reference_curve;
       for (std::size_t k = 0; k < points.size(); ++k) {
-        const double distance = std::min((points[k] - closest_point(line, points[k])).norm(),
-                                         (points[k] - closest_point(flap.reference_curve, points[k])).norm());
+        const double distance =
+            std::min((points[k] - closest_point(line, points[k])).norm(),
+                     (points[k] - closest_point(flap.reference_curve, points[k])).norm());
         if (distance > tolerance) {
           throw BadInput(sfile + ": /flaps/" + flap.name + "/nodes: beam node " +
                          std::to_string(k) + " at (" + text::format_number(points[k].x()) + ", " +
@@ -360,8 +386,10 @@ DisplaceResult run_displace_unchecked(const DisplaceOptions& options, const Logg
       }
       if ((points.front() - flap.reference_curve.front()).norm() > tolerance ||
           (points.back() - flap.reference_curve.back()).norm() > tolerance) {
-        throw BadInput(sfile + ": /flaps/" + flap.name + "/nodes: the beam does not start and end where the "
-                       "reference curve of flap '" + flap.name + "' in " + options.model_file.string() +
+        throw BadInput(sfile + ": /flaps/" + flap.name +
+                       "/nodes: the beam does not start and end where the "
+                       "reference curve of flap '" +
+                       flap.name + "' in " + options.model_file.string() +
                        " does (mismatched model and structure files)");
       }
       try {
@@ -379,8 +407,8 @@ DisplaceResult run_displace_unchecked(const DisplaceOptions& options, const Logg
     wall_source = "mesh wall nodes of " + options.mesh_file.string();
     for (MeshWall& wall : read_mesh_walls(options.mesh_file)) {
       if (!beams.count(wall.flap)) {
-        throw BadInput(options.mesh_file.string() + ": /mesh/boundaries/" + wall.name + ": flap '" + wall.flap +
-                       "' is not in " + options.model_file.string());
+        throw BadInput(options.mesh_file.string() + ": /mesh/boundaries/" + wall.name + ": flap '" +
+                       wall.flap + "' is not in " + options.model_file.string());
       }
       WallDisplacement d;
       d.name = wall.name;
@@ -404,8 +432,9 @@ DisplaceResult run_displace_unchecked(const DisplaceOptions& options, const Logg
     }
   }
   out << "tfmb-loads displace: wall displacement (" << wall_source << ")\n";
-  out << std::left << std::setw(20) << "wall" << std::setw(12) << "flap" << std::right << std::setw(8)
-      << "points" << std::setw(16) << "max |d| [m]" << (options.diff ? "    max error [m]" : "") << "\n";
+  out << std::left << std::setw(20) << "wall" << std::setw(12) << "flap" << std::right
+      << std::setw(8) << "points" << std::setw(16) << "max |d| [m]"
+      << (options.diff ? "    max error [m]" : "") << "\n";
   for (WallDisplacement& wall : result.walls) {
     const auto& [beam, motion] = beams.at(wall.flap);
     wall.displacement = wall_displacement(beam, motion, wall.points);
@@ -417,23 +446,25 @@ DisplaceResult run_displace_unchecked(const DisplaceOptions& options, const Logg
         error = std::max(error, (wall.displacement[i] - exact).norm());
       }
     }
-    if (options.diff) result.max_error.push_back(error);
-    out << std::left << std::setw(20) << wall.name << std::setw(12) << wall.flap << std::right << std::setw(8)
-        << wall.points.size() << std::setw(16) << std::setprecision(6) << largest;
-    if (options.diff) out << std::setw(17) << std::setprecision(3) << error;
+    if (options.diff)
+      result.max_error.push_back(error);
+    out << std::left << std::setw(20) << wall.name << std::setw(12) << wall.flap << std::right
+        << std::setw(8) << wall.points.size() << std::setw(16) << std::setprecision(6) << largest;
+    if (options.diff)
+      out << std::setw(17) << std::setprecision(3) << error;
     out << "\n";
   }
   formats::Provenance provenance;
   provenance.command_line = options.command_line;
-  provenance.settings =
-      "command = \"displace\"\n" +
-      (use_function ? "function = \"" + options.function + "\"\n" : std::string()) +
-      "match_tolerance = " + text::format_number(options.match_tolerance) + "\n";
-  if (!use_function) provenance.inputs.push_back(options.structure_file);
+  provenance.settings = options.settings_toml;
+  if (!use_function)
+    provenance.inputs.push_back(options.structure_file);
   provenance.inputs.push_back(options.model_file);
-  if (!options.mesh_file.empty()) provenance.inputs.push_back(options.mesh_file);
+  if (!options.mesh_file.empty())
+    provenance.inputs.push_back(options.mesh_file);
   write_walldisp(options.output, header, wall_source, result.walls, provenance);
-  logger.summary("wrote " + options.output.string() + ": " + std::to_string(result.walls.size()) + " walls");
+  logger.summary("wrote " + options.output.string() + ": " + std::to_string(result.walls.size()) +
+                 " walls");
   return result;
 }
 
@@ -446,7 +477,8 @@ ForcesResult run_forces(const ForcesOptions& options, const Logger& logger, std:
   }
 }
 
-DisplaceResult run_displace(const DisplaceOptions& options, const Logger& logger, std::ostream& out) {
+DisplaceResult run_displace(const DisplaceOptions& options, const Logger& logger,
+                            std::ostream& out) {
   try {
     return run_displace_unchecked(options, logger, out);
   } catch (const std::invalid_argument& e) {

@@ -16,7 +16,7 @@
 namespace tfmb::loads {
 
 struct ForcesOptions {
-  std::filesystem::path flow_file;   // empty with `function`
+  std::filesystem::path flow_file;  // empty with `function`
   std::filesystem::path model_file;
   std::filesystem::path output;
   Method method = Method::conservative;
@@ -25,11 +25,12 @@ struct ForcesOptions {
   // cut into `function_samples` pieces.
   std::string function;
   int function_samples = 8;
-  bool diff = false;                 // report the mapping error against `function`
-  double coverage_tolerance = 1e-3;  // relative to the flap length
+  bool diff = false;                            // report the mapping error against `function`
+  double coverage_tolerance = 1e-3;             // relative to the flap length
   std::optional<double> missing_side_pressure;  // [Pa] for a flap side without traces
   std::filesystem::path reference_mesh;  // two-way: undeformed flowmesh (see read_flow_traces)
   std::string command_line;
+  std::string settings_toml;  // the command line's options (cli::OptionTable) for /provenance
 };
 
 struct FlapDiff {
@@ -50,14 +51,15 @@ ForcesResult run_forces(const ForcesOptions& options, const Logger& logger, std:
 struct DisplaceOptions {
   std::filesystem::path structure_file;  // empty with `function`
   std::filesystem::path model_file;
-  std::filesystem::path mesh_file;       // optional flowmesh/flow: wall points = mesh wall nodes
+  std::filesystem::path mesh_file;  // optional flowmesh/flow: wall points = mesh wall nodes
   std::filesystem::path output;
   // "ux=...; uy=...; rz=..." beam displacement [m] and rotation [rad] at the beam nodes as
   // functions of x, y [m]; replaces the structure file.
   std::string function;
-  bool diff = false;  // compare with (ux, uy) of `function` at the wall points
+  bool diff = false;              // compare with (ux, uy) of `function` at the wall points
   double match_tolerance = 1e-6;  // structure nodes vs model reference curve, relative to length
   std::string command_line;
+  std::string settings_toml;  // the command line's options (cli::OptionTable) for /provenance
 };
 
 struct DisplaceResult {
@@ -65,6 +67,7 @@ struct DisplaceResult {
   std::vector<double> max_error;  // with diff, per wall [m]
 };
 
-DisplaceResult run_displace(const DisplaceOptions& options, const Logger& logger, std::ostream& out);
+DisplaceResult run_displace(const DisplaceOptions& options, const Logger& logger,
+                            std::ostream& out);
 
 }  // namespace tfmb::loads

@@ -3,12 +3,13 @@
 //
 // Sample runs:
 //   tfmb-matmap thermal.h5 model.h5 --db materials-db.h5 -o materials.h5
-//   tfmb-matmap thermal.h5 model.h5 --db materials-db.h5 --clamp -o materials.h5   # flag, do not refuse
+//   tfmb-matmap thermal.h5 model.h5 --db materials-db.h5 --clamp -o materials.h5  # flag, exit 0
 #include <cstdlib>
 #include <iostream>
 
 #include "run.hpp"
 #include "tfmb/common/cli.hpp"
+#include "tfmb/common/options.hpp"
 
 #ifndef TFMB_DEFAULT_MATERIAL_DB
 #define TFMB_DEFAULT_MATERIAL_DB "materials-db.h5"
@@ -22,22 +23,29 @@ int main(int argc, char** argv) {
   tfmb::matmap::Options options;
   // Default database: $TFMB_MATERIAL_DB (as tfmb-heat), else the repository's data/materials-db.h5.
   const char* environment_db = std::getenv("TFMB_MATERIAL_DB");
-  options.database_file = environment_db && *environment_db ? environment_db : TFMB_DEFAULT_MATERIAL_DB;
-  app.add_option("thermal", options.thermal_file, "thermal.h5: per beam element temperatures")->required();
-  app.add_option("model", options.model_file, "model.h5: flap materials and sections")->required();
-  app.add_option("--db", options.database_file, "material database (tfmb/material-db); default $TFMB_MATERIAL_DB, else data/materials-db.h5")->capture_default_str();
-  tfmb::cli::add_output_option(app, options.output, "materials file (tfmb/materials)");
-  app.add_flag("--clamp", options.clamp,
-               "outside a property table use its end value and flag the element (default: exit 3)");
-  app.add_option("--stress-free-temperature", options.stress_free_temperature,
-                 "[K] temperature of zero thermal strain (default: the model's /thermal reference "
-                 "temperature, else the material's CTE reference temperature)");
-  app.add_option("--poisson-ratio", options.poisson_ratio,
-                 "[1] for materials the database has no Poisson ratio or shear modulus for");
-  app.add_option("--allowable-strain", options.allowable_strain,
-                 "[1] for materials the database has no yield strength for");
+  options.database_file =
+      environment_db && *environment_db ? environment_db : TFMB_DEFAULT_MATERIAL_DB;
+  tfmb::cli::OptionTable table(app);
+  table.add("thermal", options.thermal_file, "", "thermal.h5: per beam element temperatures")
+      ->required();
+  table.add("model", options.model_file, "", "model.h5: flap materials and sections")->required();
+  table.add(
+      "--db", options.database_file, "",
+      "material database (tfmb/material-db); default $TFMB_MATERIAL_DB, else data/materials-db.h5");
+  table.add_output(options.output, "materials file (tfmb/materials)");
+  table.add_flag(
+      "--clamp", options.clamp,
+      "outside a property table use its end value and flag the element (default: exit 3)");
+  table.add("--stress-free-temperature", options.stress_free_temperature, "K",
+            "temperature of zero thermal strain (default: the model's /thermal reference "
+            "temperature, else the material's CTE reference temperature)");
+  table.add("--poisson-ratio", options.poisson_ratio, "1",
+            "for materials the database has no Poisson ratio or shear modulus for");
+  table.add("--allowable-strain", options.allowable_strain, "1",
+            "for materials the database has no yield strength for");
   options.command_line = tfmb::cli::command_line(argc, argv);
   return tfmb::cli::run_main(app, argc, argv, [&] {
+    options.settings_toml = table.settings_toml();
     tfmb::Logger logger("tfmb-matmap", common.verbosity());
     tfmb::matmap::run(options, logger, std::cout);
     return 0;

@@ -47,7 +47,8 @@ Result run(const Options& options, const Logger& logger, std::ostream& out) {
   const std::string tfile = options.thermal_file.string();
 
   for (const auto& [name, flap] : thermal) {
-    if (std::none_of(model.flaps.begin(), model.flaps.end(), [&](const ModelFlap& f) { return f.name == name; })) {
+    if (std::none_of(model.flaps.begin(), model.flaps.end(),
+                     [&](const ModelFlap& f) { return f.name == name; })) {
       throw BadInput(tfile + ": /beam/" + name + ": flap not in " + options.model_file.string() +
                      " (mismatched model and thermal files)");
     }
@@ -55,10 +56,13 @@ Result run(const Options& options, const Logger& logger, std::ostream& out) {
   Result result;
   // The table goes to `out` only when every flap mapped, so an error leaves stdout empty.
   std::ostringstream table;
-  table << "tfmb-matmap: properties at the element temperatures (" << options.database_file.string() << ")\n";
-  table << std::left << std::setw(12) << "flap" << std::setw(14) << "material" << std::right << std::setw(6) << "elems"
-      << std::setw(18) << "T min..max [K]" << std::setw(20) << "E min..max [GPa]" << std::setw(14)
-      << "eps_th max" << std::setw(14) << "allow. min" << std::setw(9) << "clamped" << "\n";
+  table << "tfmb-matmap: properties at the element temperatures (" << options.database_file.string()
+        << ")\n";
+  table << std::left << std::setw(12) << "flap" << std::setw(14) << "material" << std::right
+        << std::setw(6) << "elems" << std::setw(18) << "T min..max [K]" << std::setw(20)
+        << "E min..max [GPa]" << std::setw(14) << "eps_th max" << std::setw(14) << "allow. min"
+        << std::setw(9) << "clamped"
+        << "\n";
   for (const ModelFlap& mf : model.flaps) {
     auto it = thermal.find(mf.name);
     if (it == thermal.end()) {
@@ -68,16 +72,19 @@ Result run(const Options& options, const Logger& logger, std::ostream& out) {
     const ThermalFlap& tf = it->second;
     const std::string location = tfile + ": /beam/" + mf.name + "/mean_temperature";
     if (tf.mean_temperature.size() != static_cast<std::size_t>(mf.elements)) {
-      throw BadInput(location + ": " + std::to_string(tf.mean_temperature.size()) + " elements, but flap '" +
-                     mf.name + "' of " + options.model_file.string() + " has " + std::to_string(mf.elements) +
+      throw BadInput(location + ": " + std::to_string(tf.mean_temperature.size()) +
+                     " elements, but flap '" + mf.name + "' of " + options.model_file.string() +
+                     " has " + std::to_string(mf.elements) +
                      " (mismatched model and thermal files)");
     }
     const Material* material = db.find(mf.material);
     if (!material) {
       std::string names;
-      for (const auto& m : db.materials) names += (names.empty() ? "" : ", ") + m.name;
-      throw BadInput(options.model_file.string() + ": /flaps/" + mf.name + ": material '" + mf.material +
-                     "' is not in " + options.database_file.string() + " (materials: " + names + ")");
+      for (const auto& m : db.materials)
+        names += (names.empty() ? "" : ", ") + m.name;
+      throw BadInput(options.model_file.string() + ": /flaps/" + mf.name + ": material '" +
+                     mf.material + "' is not in " + options.database_file.string() +
+                     " (materials: " + names + ")");
     }
     MaterialsFlap flap;
     flap.name = mf.name;
@@ -93,8 +100,8 @@ Result run(const Options& options, const Logger& logger, std::ostream& out) {
     const bool has_g = material->find("shear_modulus") != nullptr;
     if ((!has_nu || !has_g) && !options.poisson_ratio) {
       throw BadInput(options.database_file.string() + ": /materials/" + material->name + ": no " +
-                     (has_nu ? "shear_modulus" : "poisson_ratio") +
-                     " (missing: " + material->missing + "); give --poisson-ratio to use G = E / (2 (1 + nu))");
+                     (has_nu ? "shear_modulus" : "poisson_ratio") + " (missing: " +
+                     material->missing + "); give --poisson-ratio to use G = E / (2 (1 + nu))");
     }
     flap.shear_modulus_basis =
         has_g && has_nu
@@ -121,13 +128,18 @@ Result run(const Options& options, const Logger& logger, std::ostream& out) {
       const double dt = tf.delta_temperature[k];
       ElementLookup lookup{*material, options.clamp, {}, location + "[" + std::to_string(k) + "]"};
       const double E = lookup("youngs_modulus", t, "element temperature");
-      const double nu = has_nu ? lookup("poisson_ratio", t, "element temperature") : *options.poisson_ratio;
-      const double G = has_g && has_nu ? lookup("shear_modulus", t, "element temperature") : E / (2.0 * (1.0 + nu));
+      const double nu =
+          has_nu ? lookup("poisson_ratio", t, "element temperature") : *options.poisson_ratio;
+      const double G = has_g && has_nu ? lookup("shear_modulus", t, "element temperature")
+                                       : E / (2.0 * (1.0 + nu));
       const double alpha = lookup("thermal_expansion", t, "element temperature");
-      const double alpha_in = lookup("thermal_expansion", t - 0.5 * dt, "inner surface temperature");
-      const double alpha_out = lookup("thermal_expansion", t + 0.5 * dt, "outer surface temperature");
-      lookup.location = options.stress_free_temperature ? std::string("--stress-free-temperature")
-                                                        : options.model_file.string() + ": /thermal@reference_temperature";
+      const double alpha_in =
+          lookup("thermal_expansion", t - 0.5 * dt, "inner surface temperature");
+      const double alpha_out =
+          lookup("thermal_expansion", t + 0.5 * dt, "outer surface temperature");
+      lookup.location = options.stress_free_temperature
+                            ? std::string("--stress-free-temperature")
+                            : options.model_file.string() + ": /thermal@reference_temperature";
       const double alpha0 = lookup("thermal_expansion", t0, "stress-free temperature");
       lookup.location = location + "[" + std::to_string(k) + "]";
       const double rho = lookup("density", t, "element temperature");
@@ -142,8 +154,9 @@ Result run(const Options& options, const Logger& logger, std::ostream& out) {
         e.yield_strength.push_back(lookup("yield_strength", t, "element temperature"));
         e.ultimate_strength.push_back(lookup("ultimate_strength", t, "element temperature"));
       }
-      e.allowable_strain.push_back(options.allowable_strain ? *options.allowable_strain
-                                                            : lookup("allowable_strain", t, "element temperature"));
+      e.allowable_strain.push_back(options.allowable_strain
+                                       ? *options.allowable_strain
+                                       : lookup("allowable_strain", t, "element temperature"));
       const double eps = thermal_strain(alpha, t, alpha0, t0, t_ref);
       const double eps_in = thermal_strain(alpha_in, t - 0.5 * dt, alpha0, t0, t_ref);
       const double eps_out = thermal_strain(alpha_out, t + 0.5 * dt, alpha0, t0, t_ref);
@@ -156,18 +169,23 @@ Result run(const Options& options, const Logger& logger, std::ostream& out) {
       e.clamped.push_back(lookup.clamped.empty() ? 0 : 1);
       if (!lookup.clamped.empty()) {
         std::string what;
-        for (const auto& c : lookup.clamped) what += (what.empty() ? "" : "; ") + c;
-        logger.warn("flap " + mf.name + " element " + std::to_string(k) + ": clamped to the table end: " + what);
+        for (const auto& c : lookup.clamped)
+          what += (what.empty() ? "" : "; ") + c;
+        logger.warn("flap " + mf.name + " element " + std::to_string(k) +
+                    ": clamped to the table end: " + what);
         ++result.clamped_elements;
       }
     }
     const auto [tmin, tmax] = std::minmax_element(e.temperature.begin(), e.temperature.end());
     const auto [emin, emax] = std::minmax_element(e.youngs_modulus.begin(), e.youngs_modulus.end());
     double eps_max = 0.0;
-    for (double v : e.thermal_strain) eps_max = std::max(eps_max, std::abs(v));
-    const double allow_min = *std::min_element(e.allowable_strain.begin(), e.allowable_strain.end());
+    for (double v : e.thermal_strain)
+      eps_max = std::max(eps_max, std::abs(v));
+    const double allow_min =
+        *std::min_element(e.allowable_strain.begin(), e.allowable_strain.end());
     std::int64_t clamped = 0;
-    for (auto c : e.clamped) clamped += c;
+    for (auto c : e.clamped)
+      clamped += c;
     table << std::left << std::setw(12) << mf.name << std::setw(14) << material->name << std::right
           << std::setw(6) << mf.elements << std::setw(18)
           << (text::format_number(*tmin) + ".." + text::format_number(*tmax)) << std::setw(20)
@@ -181,16 +199,11 @@ Result run(const Options& options, const Logger& logger, std::ostream& out) {
   header.creator = "tfmb-matmap " + cli::version();
   formats::Provenance provenance;
   provenance.command_line = options.command_line;
-  std::ostringstream settings;
-  settings << "clamp = " << (options.clamp ? "true" : "false") << "\n";
-  if (options.stress_free_temperature) settings << "stress_free_temperature = " << *options.stress_free_temperature << "\n";
-  if (options.poisson_ratio) settings << "poisson_ratio = " << *options.poisson_ratio << "\n";
-  if (options.allowable_strain) settings << "allowable_strain = " << *options.allowable_strain << "\n";
-  provenance.settings = settings.str();
+  provenance.settings = options.settings_toml;
   provenance.inputs = {options.thermal_file, options.model_file, options.database_file};
   write_materials(options.output, header, result.flaps, provenance);
-  logger.summary("wrote " + options.output.string() + ": " + std::to_string(result.flaps.size()) + " flaps, " +
-                 std::to_string(result.clamped_elements) + " clamped elements");
+  logger.summary("wrote " + options.output.string() + ": " + std::to_string(result.flaps.size()) +
+                 " flaps, " + std::to_string(result.clamped_elements) + " clamped elements");
   return result;
 }
 

@@ -29,6 +29,7 @@ struct Options {
   // allowable strain [1].
   std::optional<double> allowable_strain;
   std::string command_line;
+  std::string settings_toml;  // the command line's options (cli::OptionTable) for /provenance
 };
 
 struct Result {

@@ -25,11 +25,11 @@ std::optional<double> estimated_yplus(const Model& model, double height);
 
 // --- quality -------------------------------------------------------------------------------
 struct Quality {
-  double min_angle = 180.0;          // [deg] smallest interior angle of any cell
-  double max_aspect_ratio = 1.0;     // [1] longest over shortest edge of a cell, largest
-  double min_area = 0.0;             // [m^2] smallest corner-triangle area (quads: 4 corners)
-  std::int64_t worst_cell = -1;      // cell with min_area
-  std::size_t invalid_cells = 0;     // cells with a non-positive corner area
+  double min_angle = 180.0;       // [deg] smallest interior angle of any cell
+  double max_aspect_ratio = 1.0;  // [1] longest over shortest edge of a cell, largest
+  double min_area = 0.0;          // [m^2] smallest corner-triangle area (quads: 4 corners)
+  std::int64_t worst_cell = -1;   // cell with min_area
+  std::size_t invalid_cells = 0;  // cells with a non-positive corner area
 };
 Quality mesh_quality(const Mesh& mesh);
 // Smallest signed area of the corner triangles of a cell (positive: valid, counter-clockwise).
@@ -39,13 +39,13 @@ void orient_counter_clockwise(Mesh& mesh);
 
 // --- flow mesh -----------------------------------------------------------------------------
 struct FlowMeshOptions {
-  double scale = 0.0;          // 0: the model's mesh.scale; else overrides it
-  int algorithm = 6;           // gmsh 2D algorithm (5 Delaunay, 6 Frontal-Delaunay)
+  double scale = 0.0;  // 0: the model's mesh.scale; else overrides it
+  int algorithm = 6;   // gmsh 2D algorithm (5 Delaunay, 6 Frontal-Delaunay)
 };
 struct FlowMeshReport {
   Quality quality;
   int boundary_layers = 0;
-  double first_layer_height = 0.0;  // [m]
+  double first_layer_height = 0.0;        // [m]
   std::optional<double> estimated_yplus;  // [1] empty: the model records no viscous length
   double seconds = 0.0;
 };
@@ -64,10 +64,10 @@ Mesh build_solid_mesh(const Model& model, SolidLink& link);
 
 // --- deformation ---------------------------------------------------------------------------
 struct WallDisplacement {
-  std::string boundary;              // a flow-mesh boundary name, or <flap>_<side> of the model
+  std::string boundary;  // a flow-mesh boundary name, or <flap>_<side> of the model
   std::string flap;
-  std::vector<std::int64_t> nodes;   // flow-mesh node of each point (empty: points of the model)
-  Polyline x0;                       // [m]
+  std::vector<std::int64_t> nodes;  // flow-mesh node of each point (empty: points of the model)
+  Polyline x0;                      // [m]
   std::vector<Eigen::Vector2d> displacement;  // [m]
 };
 std::vector<WallDisplacement> read_walldisp(const std::filesystem::path& file);
@@ -75,8 +75,8 @@ struct DeformReport {
   Quality quality;
   double admissible_fraction = 1.0;  // largest fraction of the displacement keeping cells valid
   std::size_t moved_wall_nodes = 0;
-  std::size_t projected_nodes = 0;   // wall nodes off the walldisp curves (joins, lips, end faces)
-  double largest_projection = 0.0;   // [m] their largest distance to the curves
+  std::size_t projected_nodes = 0;  // wall nodes off the walldisp curves (joins, lips, end faces)
+  double largest_projection = 0.0;  // [m] their largest distance to the curves
 };
 // Moves the wall nodes by the wall displacement and the rest by inverse-distance weighting (Luke,
 // Collins & Blades 2012). Wall nodes: given by node id (walldisp `node`), else interpolated along
@@ -84,15 +84,17 @@ struct DeformReport {
 // faces, and the joins between flaps) taken from the nearest point of that flap's walldisp
 // curves. Throws BadInput (with the admissible fraction found by bisection) if a cell would
 // invert.
-Mesh deform_mesh(const Mesh& mesh, const std::vector<WallDisplacement>& walls, DeformReport& report);
+Mesh deform_mesh(const Mesh& mesh, const std::vector<WallDisplacement>& walls,
+                 DeformReport& report);
 
 // --- commands ------------------------------------------------------------------------------
 struct Options {
   std::string command;  // flow | solid | deform
   std::filesystem::path input, walldisp, output;
-  double scale = 0.0;
+  double scale = 0.0;  // 0: the case's mesh.scale
   int algorithm = 6;
   std::string command_line;
+  std::string settings_toml;  // the command line's options (cli::OptionTable) for /provenance
 };
 int run(const Options& options, const Logger& log);
 

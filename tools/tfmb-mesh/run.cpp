@@ -1,5 +1,3 @@
-#include <sstream>
-
 #include "mesh_tools.hpp"
 #include "tfmb/common/cli.hpp"
 #include "tfmb/common/errors.hpp"
@@ -29,11 +27,7 @@ formats::Provenance provenance(const Options& options, std::vector<std::filesyst
   formats::Provenance p;
   p.command_line = options.command_line;
   p.inputs = std::move(inputs);
-  std::ostringstream settings;
-  settings << "command = \"" << options.command << "\"\n";
-  if (options.scale > 0) settings << "scale = " << options.scale << "\n";
-  settings << "algorithm = " << options.algorithm << "\n";
-  p.settings = settings.str();
+  p.settings = options.settings_toml;
   return p;
 }
 
@@ -49,7 +43,8 @@ int run(const Options& options, const Logger& log) {
     FlowMeshReport report;
     const Mesh mesh = build_flow_mesh(model, fo, report, log);
     if (report.quality.invalid_cells > 0) {
-      throw InternalError("flow mesh has " + std::to_string(report.quality.invalid_cells) + " invalid cells");
+      throw InternalError("flow mesh has " + std::to_string(report.quality.invalid_cells) +
+                          " invalid cells");
     }
     {
       h5::Writer w(options.output);
@@ -72,9 +67,11 @@ int run(const Options& options, const Logger& log) {
              num(report.first_layer_height) + " m, estimated y+ " +
              (report.estimated_yplus ? num(*report.estimated_yplus)
                                      : std::string("not recorded in the model")));
-    log.summary("wrote " + options.output.string() + ": " + std::to_string(mesh.node_count()) + " nodes, " +
-                std::to_string(mesh.triangles.rows()) + " triangles, " + std::to_string(mesh.quads.rows()) +
-                " quads, " + std::to_string(mesh.boundaries.size()) + " boundaries (" + num(clock.seconds(), 3) + " s)");
+    log.summary("wrote " + options.output.string() + ": " + std::to_string(mesh.node_count()) +
+                " nodes, " + std::to_string(mesh.triangles.rows()) + " triangles, " +
+                std::to_string(mesh.quads.rows()) + " quads, " +
+                std::to_string(mesh.boundaries.size()) + " boundaries (" + num(clock.seconds(), 3) +
+                " s)");
     return 0;
   }
   if (options.command == "solid") {
@@ -91,7 +88,8 @@ int run(const Options& options, const Logger& log) {
       formats::write_mesh(w, mesh);
       w.write_strings("/link/flap_names", link.flap_names, "flap names, indexed by cell_flap");
       w.write("/link/cell_flap", link.cell_flap, "1", "flap index of each cell");
-      w.write("/link/cell_element", link.cell_element, "1", "beam element (within its flap) of each cell");
+      w.write("/link/cell_element", link.cell_element, "1",
+              "beam element (within its flap) of each cell");
       w.write("/link/point_thickness_coordinate", link.point_thickness_coordinate, "m",
               "signed distance from the reference line, positive towards the outer wall");
       formats::write_provenance(w, provenance(options, {options.input}));
@@ -99,8 +97,9 @@ int run(const Options& options, const Logger& log) {
     }
     formats::write_xdmf_sidecar(options.output);
     log.info("quality: " + quality_text(q));
-    log.summary("wrote " + options.output.string() + ": " + std::to_string(mesh.node_count()) + " nodes, " +
-                std::to_string(mesh.quads.rows()) + " quads in " + std::to_string(link.flap_names.size()) + " flaps");
+    log.summary("wrote " + options.output.string() + ": " + std::to_string(mesh.node_count()) +
+                " nodes, " + std::to_string(mesh.quads.rows()) + " quads in " +
+                std::to_string(link.flap_names.size()) + " flaps");
     return 0;
   }
   if (options.command == "deform") {
@@ -120,19 +119,24 @@ int run(const Options& options, const Logger& log) {
       formats::write_mesh(w, moved);
       write_quality(w, report.quality);
       for (const char* name : {"estimated_yplus", "first_layer_height"}) {
-        if (file.has_attr("/mesh", name)) w.set_attr("/mesh", name, file.attr_f64("/mesh", name));
+        if (file.has_attr("/mesh", name))
+          w.set_attr("/mesh", name, file.attr_f64("/mesh", name));
       }
-      if (file.has_attr("/mesh", "boundary_layers")) w.set_attr("/mesh", "boundary_layers", file.attr_i64("/mesh", "boundary_layers"));
+      if (file.has_attr("/mesh", "boundary_layers"))
+        w.set_attr("/mesh", "boundary_layers", file.attr_i64("/mesh", "boundary_layers"));
       formats::write_provenance(w, provenance(options, {options.input, options.walldisp}));
       w.commit();
     }
     formats::write_xdmf_sidecar(options.output);
     if (report.projected_nodes > 0) {
-      log.info(std::to_string(report.projected_nodes) + " wall nodes off the walldisp curves (joins, lips, end "
-               "faces) took the displacement of the nearest curve point (at most " + num(report.largest_projection) + " m away)");
+      log.info(std::to_string(report.projected_nodes) +
+               " wall nodes off the walldisp curves (joins, lips, end "
+               "faces) took the displacement of the nearest curve point (at most " +
+               num(report.largest_projection) + " m away)");
     }
     log.info("quality after deformation: " + quality_text(report.quality));
-    log.summary("wrote " + options.output.string() + ": " + std::to_string(report.moved_wall_nodes) +
+    log.summary("wrote " + options.output.string() + ": " +
+                std::to_string(report.moved_wall_nodes) +
                 " boundary nodes displaced, every cell valid (" + num(clock.seconds(), 3) + " s)");
     return 0;
   }

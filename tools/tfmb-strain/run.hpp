@@ -19,6 +19,7 @@ struct Options {
   MechanicalBasis basis = MechanicalBasis::mechanical;
   int worst_count = 5;
   std::string command_line;
+  std::string settings_toml;  // the command line's options (cli::OptionTable) for /provenance
 };
 
 // Throws BadInput for mismatched structure and materials files.

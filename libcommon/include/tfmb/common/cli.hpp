@@ -1,6 +1,6 @@
-// Command-line conventions shared by every tool (DESIGN.md §5): CLI11 options declared once,
-// --version, -o/--output, -v/-q, --threads, --set key=value, and the mapping of exceptions to
-// the documented exit codes.
+// Command-line conventions shared by every tool (DESIGN.md §5): --version, -o/--output, -v/-q,
+// --threads, --set key=value, and the mapping of exceptions to the documented exit codes. Tools
+// declare their own options once, through cli::OptionTable (options.hpp).
 #pragma once
 
 #include <CLI/CLI.hpp>

@@ -24,14 +24,17 @@ struct Options {
   /// dynamic: continue from the final state and motion (/restart) of an earlier dynamic
   /// structure.h5 of the same model (two-way exchanges of dynamics, the seed's config2)
   std::filesystem::path initial_state;
-  double rho_infinity = 0.8;        // dynamic: spectral radius at infinity
-  int modes = 6;                    // modal: number of modes
-  bool arc_length = false;          // static: arc-length continuation to load factor 1 (limit points)
-  bool dead_loads = false;          // loads.h5 forces as dead loads (default: follower, pressure)
+  double rho_infinity = 0.8;  // dynamic: spectral radius at infinity
+  int modes = 6;              // modal: number of modes
+  bool arc_length = false;    // static: arc-length continuation to load factor 1 (limit points)
+  bool dead_loads = false;    // loads.h5 forces as dead loads (default: follower, pressure)
   /// Dead point loads "flap:start|end:fx,fy[,mz]" [N, N m] at flap ends (e.g. the seed's centre
   /// load of cases/beam-revolute); held constant in time in dynamics.
   std::vector<std::string> point_loads;
   std::string command_line;
+  /// Every command-line option's value as TOML (cli::OptionTable::settings_toml), for
+  /// /provenance@settings; empty for in-process callers.
+  std::string settings_toml;
 };
 
 /// A beam model built from the files, with the mapping back to the flaps.
@@ -40,8 +43,8 @@ struct FileModel {
   std::vector<std::string> flap_names;
   std::map<std::string, std::vector<int>> flap_nodes;     // beam nodes of each flap, in order
   std::map<std::string, std::vector<int>> flap_elements;  // quadratic elements of each flap
-  std::vector<std::string> joint_names;                   // per model.joints entry ("" for planar guides)
-  formats::AnalysisSettings analysis;  // the model's /analysis (defaults of --analysis etc.)
+  std::vector<std::string> joint_names;  // per model.joints entry ("" for planar guides)
+  formats::AnalysisSettings analysis;    // the model's /analysis (defaults of --analysis etc.)
 };
 
 /// Reads and checks the inputs (throws tfmb::BadInput naming the file and object on errors).

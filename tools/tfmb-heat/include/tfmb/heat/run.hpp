@@ -25,15 +25,18 @@ class Logger;
 namespace tfmb::heat {
 
 struct Options {
-  std::filesystem::path solid_mesh;   // solidmesh.h5
-  std::filesystem::path flow;         // flow.h5
-  std::filesystem::path model;        // model.h5
-  std::filesystem::path material_db;  // material database (material-db kind)
-  std::filesystem::path output;       // thermal.h5
+  std::filesystem::path solid_mesh;        // solidmesh.h5
+  std::filesystem::path flow;              // flow.h5
+  std::filesystem::path model;             // model.h5
+  std::filesystem::path material_db;       // material database (material-db kind)
+  std::filesystem::path output;            // thermal.h5
   double environment_temperature = 300.0;  // [K] radiation sink of the outer walls
   double joint_conductance = 0.0;          // [W/(m^2 K)] across flap ends at joints; 0: none
   NewtonSettings newton;
-  std::string command_line;           // stored in /provenance
+  std::string command_line;  // stored in /provenance
+  // Every command-line option's value as TOML (cli::OptionTable::settings_toml), for
+  // /provenance@settings; empty for in-process callers.
+  std::string settings_toml;
 };
 
 /// Runs the stage and writes the output (and its XDMF sidecar). Returns 0. Throws
