@@ -5,9 +5,9 @@
 // boundaries are held fixed. Same topology, so the flow solver can restart.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
-#include <limits>
 #include <sstream>
 
 #include "mesh_tools.hpp"
@@ -19,197 +19,260 @@
 namespace tfmb::mesh {
 namespace {
 
+using Vector = Eigen::Vector2d;
+
 bool all_valid(const Mesh& mesh, const h5::MatrixXdR& points, std::int64_t* first_bad) {
   const auto cells = static_cast<std::int64_t>(mesh.cell_count());
   for (std::int64_t c = 0; c < cells; ++c) {
     if (cell_min_corner_area(points, mesh, c) <= 0.0) {
-      if (first_bad) *first_bad = c;
+      if (first_bad)
+        *first_bad = c;
       return false;
     }
   }
   return true;
 }
 
-}  // namespace
-
-std::vector<WallDisplacement> read_walldisp(const std::filesystem::path& file) {
-  const h5::Reader r = formats::open_checked(file, "walldisp");
-  std::vector<WallDisplacement> walls;
-  for (const auto& name : r.children("/walls")) {
-    WallDisplacement w;
-    w.boundary = name;
-    if (r.has_attr("/walls/" + name, "flap")) w.flap = r.attr_string("/walls/" + name, "flap");
-    const auto x0 = r.read_matrix("/walls/" + name + "/x0", {}, 2);
-    const auto u = r.read_matrix("/walls/" + name + "/displacement", x0.rows(), 2);
-    if (x0.rows() < 1) r.fail("/walls/" + name + "/x0", "no points");
-    for (Eigen::Index i = 0; i < x0.rows(); ++i) {
-      w.x0.emplace_back(x0(i, 0), x0(i, 1));
-      w.displacement.emplace_back(u(i, 0), u(i, 1));
-    }
-    if (r.exists("/walls/" + name + "/node")) {
-      w.nodes = r.read_index_vector("/walls/" + name + "/node", static_cast<std::size_t>(x0.rows()), 0,
-                                    std::numeric_limits<std::int64_t>::max());
-    }
-    walls.push_back(std::move(w));
-  }
-  return walls;
+bool is_wall(const formats::Boundary& boundary) {
+  return boundary.kind == "wall" || boundary.kind == "slip_wall";
 }
 
-Mesh deform_mesh(const Mesh& mesh, const std::vector<WallDisplacement>& walls, DeformReport& report) {
+// The boundary nodes whose displacement is given, with the boundary length each stands for (the
+// area A_i of the weights); every node not listed moves by interpolation.
+struct BoundarySources {
+  std::map<std::int64_t, Vector> prescribed;   // [m] displacement of a boundary node
+  std::map<std::int64_t, double> node_length;  // [m] half the length of its boundary edges
+};
+
+// The mesh nodes before the deformation and the diagonal of their bounding box (the length
+// scale L of the weights and of every tolerance).
+struct NodePositions {
+  std::vector<Vector> x;  // [m]
+  double extent = 0.0;    // [m]
+  double tight = 0.0;     // [m] a node this close to a walldisp curve lies on it
+};
+
+NodePositions node_positions(const Mesh& mesh) {
+  NodePositions nodes;
   const auto n = static_cast<std::size_t>(mesh.points.rows());
-  std::vector<Eigen::Vector2d> x(n);
-  for (std::size_t i = 0; i < n; ++i) x[i] = mesh.points.row(static_cast<Eigen::Index>(i)).transpose();
-  double extent = 0.0;
-  {
-    Eigen::Vector2d lo = x[0], hi = x[0];
-    for (const auto& p : x) {
-      lo = lo.cwiseMin(p);
-      hi = hi.cwiseMax(p);
-    }
-    extent = (hi - lo).norm();
+  nodes.x.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    nodes.x[i] = mesh.points.row(static_cast<Eigen::Index>(i)).transpose();
+  Vector lo = nodes.x[0], hi = nodes.x[0];
+  for (const auto& p : nodes.x) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
   }
-  // Prescribed displacements: walls from walldisp, every other boundary node fixed.
-  std::map<std::int64_t, Eigen::Vector2d> prescribed;
-  std::map<std::int64_t, double> node_length;  // boundary length associated with each node
-  const double tight = 1e-9 * extent + 1e-12;
-  // 1. Points that name their mesh node.
+  nodes.extent = (hi - lo).norm();
+  nodes.tight = 1e-9 * nodes.extent + 1e-12;
+  return nodes;
+}
+
+// Walldisp points that name their flow-mesh node (tfmb-loads writes them for the mesh it read)
+// prescribe that node; a point away from its node means the file belongs to another mesh.
+void prescribe_named_nodes(const std::vector<WallDisplacement>& walls, const NodePositions& nodes,
+                           BoundarySources& sources) {
+  const std::size_t n = nodes.x.size();
   for (const auto& w : walls) {
-    if (w.nodes.empty()) continue;
     for (std::size_t k = 0; k < w.nodes.size(); ++k) {
       const auto node = w.nodes[k];
       if (node >= static_cast<std::int64_t>(n)) {
         throw BadInput("walldisp: /walls/" + w.boundary + "/node: node " + std::to_string(node) +
                        " is not in the flow mesh (" + std::to_string(n) + " nodes)");
       }
-      const double d = (x[static_cast<std::size_t>(node)] - w.x0[k]).norm();
-      if (d > tight + 1e-6 * extent) {
+      const double d = (nodes.x[static_cast<std::size_t>(node)] - w.x0[k]).norm();
+      if (d > nodes.tight + 1e-6 * nodes.extent) {
         throw BadInput("walldisp: /walls/" + w.boundary + "/x0 row " + std::to_string(k) + " is " +
                        text::format_number(d) + " m from flow-mesh node " + std::to_string(node) +
                        ": computed for another mesh");
       }
-      prescribed[node] = w.displacement[k];
+      sources.prescribed[node] = w.displacement[k];
     }
   }
-  // 2. Flap wall boundaries of the mesh: interpolate along the walldisp curve of the same name,
-  //    or project onto the curves of the same flap.
-  auto interpolate = [](const WallDisplacement& w, const Eigen::Vector2d& p, Eigen::Vector2d& u) {
-    double best = 1e300;
-    if (w.x0.size() == 1) {
-      u = w.displacement[0];
-      return (p - w.x0[0]).norm();
-    }
-    for (std::size_t s = 0; s + 1 < w.x0.size(); ++s) {
-      double t = 0.0;
-      const double d = geometry::distance_to_segment(p, w.x0[s], w.x0[s + 1], &t);
-      if (d < best) {
-        best = d;
-        u = (1 - t) * w.displacement[s] + t * w.displacement[s + 1];
-      }
-    }
-    return best;
-  };
+}
+
+// Every walldisp wall must name a wall of the mesh, unless it is a curve of a flap the mesh
+// walls are matched to by flap (model walls such as <flap>_<side>).
+void check_wall_names(const Mesh& mesh, const std::vector<WallDisplacement>& walls) {
   for (const auto& w : walls) {
     auto it = mesh.boundaries.find(w.boundary);
     if (it == mesh.boundaries.end() && (w.flap.empty() || w.nodes.size())) {
       throw BadInput("walldisp: boundary '" + w.boundary + "' is not in the flow mesh");
     }
-    if (it != mesh.boundaries.end() && it->second.kind != "wall" && it->second.kind != "slip_wall") {
-      throw BadInput("walldisp: boundary '" + w.boundary + "' is a " + it->second.kind + " boundary, not a wall");
+    if (it != mesh.boundaries.end() && !is_wall(it->second)) {
+      throw BadInput("walldisp: boundary '" + w.boundary + "' is a " + it->second.kind +
+                     " boundary, not a wall");
     }
   }
+}
+
+// The displacement at the point of a walldisp curve closest to p, linear along its segments;
+// returns the distance from p to the curve.
+double interpolate_along(const WallDisplacement& w, const Vector& p, Vector& u) {
+  double best = 1e300;
+  if (w.x0.size() == 1) {
+    u = w.displacement[0];
+    return (p - w.x0[0]).norm();
+  }
+  for (std::size_t s = 0; s + 1 < w.x0.size(); ++s) {
+    double t = 0.0;
+    const double d = geometry::distance_to_segment(p, w.x0[s], w.x0[s + 1], &t);
+    if (d < best) {
+      best = d;
+      u = (1 - t) * w.displacement[s] + t * w.displacement[s + 1];
+    }
+  }
+  return best;
+}
+
+// Takes the displacement u of the closest point of `curves` if it is closer than `best`, the
+// distance to the closest curve so far.
+void nearest_on_curves(const std::vector<const WallDisplacement*>& curves, const Vector& p,
+                       Vector& u, double& best) {
+  Vector candidate = Vector::Zero();
+  for (const auto* w : curves) {
+    const double d = interpolate_along(*w, p, candidate);
+    if (d < best) {
+      best = d;
+      u = candidate;
+    }
+  }
+}
+
+// Length of a wall and, for a flap, of all its walls (an end face is short but lies within half a
+// thickness of the flap's other walls): the scale of the projection tolerance.
+double flap_wall_length(const Mesh& mesh, const std::string& name, const formats::Boundary& wall,
+                        const std::vector<Vector>& x) {
+  double total = 0.0;
+  for (const auto& [other_name, other] : mesh.boundaries) {
+    if (other_name != name && (wall.flap.empty() || other.flap != wall.flap))
+      continue;
+    for (Eigen::Index e = 0; e < other.edges.rows(); ++e) {
+      total += (x[static_cast<std::size_t>(other.edges(e, 0))] -
+                x[static_cast<std::size_t>(other.edges(e, 1))])
+                   .norm();
+    }
+  }
+  return total;
+}
+
+// The walldisp curves a mesh wall takes its displacement from: the one of its own name, and the
+// other curves of its flap (for the nodes the first does not reach).
+struct WallCurves {
+  std::vector<const WallDisplacement*> same_name, same_flap;
+};
+WallCurves curves_of_wall(const std::string& name, const formats::Boundary& wall,
+                          const std::vector<WallDisplacement>& walls) {
+  WallCurves curves;
+  for (const auto& w : walls) {
+    if (!w.nodes.empty())
+      continue;
+    if (w.boundary == name)
+      curves.same_name.push_back(&w);
+    else if (!wall.flap.empty() && w.flap == wall.flap)
+      curves.same_flap.push_back(&w);
+  }
+  return curves;
+}
+
+// Prescribes the nodes of one mesh wall from its curves: on its own curve, else on one of its
+// flap's. Joins, lips and end faces are not on the walldisp curves; within a few per cent of the
+// wall's length they take the nearest curve point's displacement (counted in the report).
+void prescribe_wall(const std::string& name, const formats::Boundary& wall,
+                    const WallCurves& curves, double wall_length, const NodePositions& nodes,
+                    BoundarySources& sources, DeformReport& report) {
+  for (Eigen::Index e = 0; e < wall.edges.rows(); ++e) {
+    for (int k = 0; k < 2; ++k) {
+      const std::int64_t node = wall.edges(e, k);
+      if (sources.prescribed.count(node))
+        continue;
+      const Vector& p = nodes.x[static_cast<std::size_t>(node)];
+      Vector u = Vector::Zero();
+      double best = 1e300;
+      nearest_on_curves(curves.same_name, p, u, best);
+      if (best > nodes.tight)
+        nearest_on_curves(curves.same_flap, p, u, best);
+      if (best > nodes.tight) {
+        const double loose = 0.05 * std::max(wall_length, 1e-3 * nodes.extent);
+        if (best > loose) {
+          throw BadInput(
+              "walldisp: node " + std::to_string(node) + " at " + geometry::format_point(p) +
+              " of wall '" + name + "' is " + text::format_number(best) +
+              " m from the walldisp curves of " +
+              (curves.same_name.empty() ? "flap '" + wall.flap + "'" : "'" + name + "'") +
+              ": the displacement was computed for another mesh or geometry");
+        }
+        ++report.projected_nodes;
+        report.largest_projection = std::max(report.largest_projection, best);
+      }
+      sources.prescribed[node] = u;
+    }
+  }
+}
+
+// Flap wall boundaries of the mesh: interpolated along the walldisp curve of the same name, or
+// projected onto the curves of the same flap.
+void prescribe_walls(const Mesh& mesh, const std::vector<WallDisplacement>& walls,
+                     const NodePositions& nodes, BoundarySources& sources, DeformReport& report) {
   report.projected_nodes = 0;
   report.largest_projection = 0.0;
+  for (const auto& [name, wall] : mesh.boundaries) {
+    if (!is_wall(wall))
+      continue;
+    const WallCurves curves = curves_of_wall(name, wall, walls);
+    if (curves.same_name.empty() && curves.same_flap.empty())
+      continue;
+    const double wall_length = flap_wall_length(mesh, name, wall, nodes.x);
+    prescribe_wall(name, wall, curves, wall_length, nodes, sources, report);
+  }
+}
+
+// Every other boundary node is held fixed; every boundary node gets its share of the boundary
+// length.
+void hold_other_boundaries(const Mesh& mesh, const std::vector<Vector>& x,
+                           BoundarySources& sources) {
   for (const auto& [name, b] : mesh.boundaries) {
-    if (b.kind != "wall" && b.kind != "slip_wall") continue;
-    std::vector<const WallDisplacement*> same_name, same_flap;
-    for (const auto& w : walls) {
-      if (!w.nodes.empty()) continue;
-      if (w.boundary == name) same_name.push_back(&w);
-      else if (!b.flap.empty() && w.flap == b.flap) same_flap.push_back(&w);
-    }
-    if (same_name.empty() && same_flap.empty()) continue;
-    // Length of this wall and, for a flap, of all its walls (an end face is short but lies
-    // within half a thickness of the flap's other walls).
-    double boundary_length = 0.0;
-    for (const auto& [other_name, other] : mesh.boundaries) {
-      if (other_name != name && (b.flap.empty() || other.flap != b.flap)) continue;
-      for (Eigen::Index e = 0; e < other.edges.rows(); ++e) {
-        boundary_length += (x[static_cast<std::size_t>(other.edges(e, 0))] - x[static_cast<std::size_t>(other.edges(e, 1))]).norm();
-      }
-    }
     for (Eigen::Index e = 0; e < b.edges.rows(); ++e) {
+      const double len =
+          (x[static_cast<std::size_t>(b.edges(e, 0))] - x[static_cast<std::size_t>(b.edges(e, 1))])
+              .norm();
       for (int k = 0; k < 2; ++k) {
-        const std::int64_t node = b.edges(e, k);
-        if (prescribed.count(node)) continue;
-        const Eigen::Vector2d& p = x[static_cast<std::size_t>(node)];
-        Eigen::Vector2d u = Eigen::Vector2d::Zero();
-        Eigen::Vector2d candidate = Eigen::Vector2d::Zero();
-        double best = 1e300;
-        for (const auto* w : same_name) {
-          const double d = interpolate(*w, p, candidate);
-          if (d < best) {
-            best = d;
-            u = candidate;
-          }
-        }
-        if (best > tight) {
-          for (const auto* w : same_flap) {
-            const double d = interpolate(*w, p, candidate);
-            if (d < best) {
-              best = d;
-              u = candidate;
-            }
-          }
-        }
-        if (best > tight) {
-          // Joins, lips and end faces are not on the walldisp curves; within a few per cent of
-          // the wall's length they take the nearest curve point's displacement.
-          const double loose = 0.05 * std::max(boundary_length, 1e-3 * extent);
-          if (best > loose) {
-            throw BadInput("walldisp: node " + std::to_string(node) + " at " +
-                           geometry::format_point(p) + " of wall '" + name + "' is " +
-                           text::format_number(best) + " m from the walldisp curves of " +
-                           (same_name.empty() ? "flap '" + b.flap + "'" : "'" + name + "'") +
-                           ": the displacement was computed for another mesh or geometry");
-          }
-          ++report.projected_nodes;
-          report.largest_projection = std::max(report.largest_projection, best);
-        }
-        prescribed[node] = u;
+        sources.node_length[b.edges(e, k)] += 0.5 * len;
+        sources.prescribed.try_emplace(b.edges(e, k), Vector::Zero());
       }
     }
   }
-  for (const auto& [name, b] : mesh.boundaries) {
-    for (Eigen::Index e = 0; e < b.edges.rows(); ++e) {
-      const double len = (x[static_cast<std::size_t>(b.edges(e, 0))] - x[static_cast<std::size_t>(b.edges(e, 1))]).norm();
-      for (int k = 0; k < 2; ++k) {
-        node_length[b.edges(e, k)] += 0.5 * len;
-        prescribed.try_emplace(b.edges(e, k), Eigen::Vector2d::Zero());
-      }
-    }
-  }
-  std::vector<Eigen::Vector2d> source_x, source_u;
+}
+
+// Displacement of every node: the prescribed one on the boundary, inside the weighted mean of
+// Luke, Collins & Blades (2012) eq. 2-3 over all boundary nodes, w_s = A_s ((L/d)^3 + (alpha
+// L/d)^5) with L the mesh extent and alpha = 0.1.
+std::vector<Vector> interpolated_displacement(const NodePositions& nodes,
+                                              const BoundarySources& sources) {
+  const std::size_t n = nodes.x.size();
+  const auto& x = nodes.x;
+  std::vector<Vector> source_x, source_u;
   std::vector<double> source_area;
-  for (const auto& [node, u] : prescribed) {
+  for (const auto& [node, u] : sources.prescribed) {
     source_x.push_back(x[static_cast<std::size_t>(node)]);
     source_u.push_back(u);
-    source_area.push_back(node_length[node]);
+    const auto length = sources.node_length.find(node);  // a named node may be off the boundaries
+    source_area.push_back(length == sources.node_length.end() ? 0.0 : length->second);
   }
-  std::vector<Eigen::Vector2d> displacement(n, Eigen::Vector2d::Zero());
+  std::vector<Vector> displacement(n, Vector::Zero());
   std::vector<char> is_source(n, 0);
-  for (const auto& [node, u] : prescribed) {
+  for (const auto& [node, u] : sources.prescribed) {
     displacement[static_cast<std::size_t>(node)] = u;
     is_source[static_cast<std::size_t>(node)] = 1;
   }
-  report.moved_wall_nodes = 0;
-  for (const auto& [node, u] : prescribed) report.moved_wall_nodes += u.squaredNorm() > 0.0;
-  const double length_scale = extent;
+  const double length_scale = nodes.extent;
   const double alpha = 0.1;
   const std::size_t ns = source_x.size();
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::size_t i = 0; i < n; ++i) {
-    if (is_source[i]) continue;
-    Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+    if (is_source[i])
+      continue;
+    Vector sum = Vector::Zero();
     double weight_sum = 0.0;
     for (std::size_t s = 0; s < ns; ++s) {
       const double d = std::max((x[i] - source_x[s]).norm(), 1e-300);
@@ -222,43 +285,103 @@ Mesh deform_mesh(const Mesh& mesh, const std::vector<WallDisplacement>& walls, D
     }
     displacement[i] = sum / weight_sum;
   }
-  auto moved = [&](double fraction) {
-    h5::MatrixXdR p = mesh.points;
-    for (std::size_t i = 0; i < n; ++i) {
-      p(static_cast<Eigen::Index>(i), 0) += fraction * displacement[i].x();
-      p(static_cast<Eigen::Index>(i), 1) += fraction * displacement[i].y();
+  return displacement;
+}
+
+// The mesh points moved by a fraction of the displacement.
+h5::MatrixXdR moved_points(const Mesh& mesh, const std::vector<Vector>& displacement,
+                           double fraction) {
+  h5::MatrixXdR p = mesh.points;
+  for (std::size_t i = 0; i < displacement.size(); ++i) {
+    p(static_cast<Eigen::Index>(i), 0) += fraction * displacement[i].x();
+    p(static_cast<Eigen::Index>(i), 1) += fraction * displacement[i].y();
+  }
+  return p;
+}
+
+// Largest fraction of the displacement that keeps every cell valid, by bisection (the moved
+// positions are linear in the fraction).
+double admissible_fraction(const Mesh& mesh, const std::vector<Vector>& displacement) {
+  double lo = 0.0, hi = 1.0;
+  for (int it = 0; it < 40; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (all_valid(mesh, moved_points(mesh, displacement, mid), nullptr) ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+// The BadInput for a displacement that inverts cells: how many, where the first one is, and how
+// much of the displacement the mesh takes.
+BadInput inverted_cells_error(const Mesh& mesh, const Mesh& moved, const std::vector<Vector>& x,
+                              std::int64_t first_bad, double fraction) {
+  const Quality q = mesh_quality(moved);
+  std::vector<std::int64_t> cell_nodes;
+  if (first_bad < mesh.triangles.rows()) {
+    for (int k = 0; k < 3; ++k)
+      cell_nodes.push_back(mesh.triangles(first_bad, k));
+  } else {
+    for (int k = 0; k < 4; ++k)
+      cell_nodes.push_back(mesh.quads(first_bad - mesh.triangles.rows(), k));
+  }
+  Vector where = Vector::Zero();
+  for (auto node : cell_nodes)
+    where += x[static_cast<std::size_t>(node)] / static_cast<double>(cell_nodes.size());
+  return BadInput("deform: the displacement would invert " + std::to_string(q.invalid_cells) +
+                  " cells (first: cell " + std::to_string(first_bad) + " near " +
+                  geometry::format_point(where) +
+                  "); the largest admissible fraction "
+                  "of this displacement is " +
+                  text::format_number(fraction) + " (apply it in smaller steps or remesh)");
+}
+
+}  // namespace
+
+std::vector<WallDisplacement> read_walldisp(const std::filesystem::path& file) {
+  const h5::Reader r = formats::open_checked(file, "walldisp");
+  std::vector<WallDisplacement> walls;
+  for (const auto& name : r.children("/walls")) {
+    WallDisplacement w;
+    w.boundary = name;
+    if (r.has_attr("/walls/" + name, "flap"))
+      w.flap = r.attr_string("/walls/" + name, "flap");
+    const auto x0 = r.read_matrix("/walls/" + name + "/x0", {}, 2);
+    const auto u = r.read_matrix("/walls/" + name + "/displacement", x0.rows(), 2);
+    if (x0.rows() < 1)
+      r.fail("/walls/" + name + "/x0", "no points");
+    for (Eigen::Index i = 0; i < x0.rows(); ++i) {
+      w.x0.emplace_back(x0(i, 0), x0(i, 1));
+      w.displacement.emplace_back(u(i, 0), u(i, 1));
     }
-    return p;
-  };
+    if (r.exists("/walls/" + name + "/node")) {
+      w.nodes = r.read_index_vector("/walls/" + name + "/node", static_cast<std::size_t>(x0.rows()),
+                                    0, std::numeric_limits<std::int64_t>::max());
+    }
+    walls.push_back(std::move(w));
+  }
+  return walls;
+}
+
+// The phases: the boundary nodes' displacements (named nodes, then the walls by curve, then the
+// other boundaries fixed), the interpolation inside, and the validity check of the moved mesh.
+Mesh deform_mesh(const Mesh& mesh, const std::vector<WallDisplacement>& walls,
+                 DeformReport& report) {
+  const NodePositions nodes = node_positions(mesh);
+  BoundarySources sources;
+  prescribe_named_nodes(walls, nodes, sources);
+  check_wall_names(mesh, walls);
+  prescribe_walls(mesh, walls, nodes, sources, report);
+  hold_other_boundaries(mesh, nodes.x, sources);
+  report.moved_wall_nodes = 0;
+  for (const auto& [node, u] : sources.prescribed)
+    report.moved_wall_nodes += u.squaredNorm() > 0.0;
+
+  const std::vector<Vector> displacement = interpolated_displacement(nodes, sources);
   Mesh out = mesh;
-  out.points = moved(1.0);
+  out.points = moved_points(mesh, displacement, 1.0);
   std::int64_t bad = -1;
   if (!all_valid(mesh, out.points, &bad)) {
-    // Bisection on the fraction of the displacement that keeps every cell valid (the moved
-    // positions are linear in the fraction).
-    double lo = 0.0, hi = 1.0;
-    for (int it = 0; it < 40; ++it) {
-      const double mid = 0.5 * (lo + hi);
-      (all_valid(mesh, moved(mid), nullptr) ? lo : hi) = mid;
-    }
-    report.admissible_fraction = lo;
-    const Quality q = mesh_quality(out);
-    const auto c = bad;
-    Eigen::Vector2d where = Eigen::Vector2d::Zero();
-    const auto nodes_of = [&](std::int64_t cell) {
-      std::vector<std::int64_t> v;
-      if (cell < mesh.triangles.rows()) for (int k = 0; k < 3; ++k) v.push_back(mesh.triangles(cell, k));
-      else for (int k = 0; k < 4; ++k) v.push_back(mesh.quads(cell - mesh.triangles.rows(), k));
-      return v;
-    };
-    const auto nodes = nodes_of(c);
-    for (auto node : nodes) where += x[static_cast<std::size_t>(node)] / static_cast<double>(nodes.size());
-    throw BadInput("deform: the displacement would invert " + std::to_string(q.invalid_cells) +
-                   " cells (first: cell " + std::to_string(c) + " near " +
-                   geometry::format_point(where) +
-                   "); the largest admissible fraction "
-                   "of this displacement is " +
-                   text::format_number(lo) + " (apply it in smaller steps or remesh)");
+    report.admissible_fraction = admissible_fraction(mesh, displacement);
+    throw inverted_cells_error(mesh, out, nodes.x, bad, report.admissible_fraction);
   }
   report.admissible_fraction = 1.0;
   report.quality = mesh_quality(out);

@@ -3,6 +3,7 @@
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
 #include "tfmb/common/log.hpp"
+#include "tfmb/common/options.hpp"
 #include "tfmb/formats/files.hpp"
 #include "tfmb/formats/model.hpp"
 #include "tfmb/formats/schema.hpp"
@@ -47,7 +48,8 @@ SolidMesh to_solid_mesh(const formats::Mesh& in) {
 PropertyTable read_property(const h5::Reader& db, const std::string& material,
                             const std::string& property) {
   const std::string group = "/materials/" + material + "/" + property;
-  if (!db.exists(group)) db.fail(group, "missing: material '" + material + "' has no " + property + " table");
+  if (!db.exists(group))
+    db.fail(group, "missing: material '" + material + "' has no " + property + " table");
   auto temperature = db.read_vector(group + "/temperature");
   auto value = db.read_vector(group + "/value", temperature.size());
   try {
@@ -60,14 +62,16 @@ PropertyTable read_property(const h5::Reader& db, const std::string& material,
 // Steady runs need only the conductivity; density and specific heat are read when present.
 PropertyTable read_optional_property(const h5::Reader& db, const std::string& material,
                                      const std::string& property) {
-  if (!db.exists("/materials/" + material + "/" + property)) return {};
+  if (!db.exists("/materials/" + material + "/" + property))
+    return {};
   return read_property(db, material, property);
 }
 
 std::string lower_trimmed(const std::string& text) {
   std::string out;
   for (char c : text) {
-    if (!std::isspace(static_cast<unsigned char>(c))) out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (!std::isspace(static_cast<unsigned char>(c)))
+      out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   }
   return out;
 }
@@ -78,14 +82,17 @@ std::string resolve_material(const h5::Reader& db, const std::string& name) {
   const std::string key = lower_trimmed(name);
   const auto materials = db.children("/materials");
   for (const auto& m : materials) {
-    if (lower_trimmed(m) == key) return m;
+    if (lower_trimmed(m) == key)
+      return m;
   }
   for (const auto& m : materials) {
     const std::string group = "/materials/" + m;
-    if (!db.has_attr(group, "aliases")) continue;
+    if (!db.has_attr(group, "aliases"))
+      continue;
     std::stringstream aliases(db.attr_string(group, "aliases"));
     for (std::string alias; std::getline(aliases, alias, ',');) {
-      if (lower_trimmed(alias) == key) return m;
+      if (lower_trimmed(alias) == key)
+        return m;
     }
   }
   return {};
@@ -100,50 +107,67 @@ struct FlowWall {
 std::vector<double> trace_values(const h5::Reader& flow, const std::string& wall,
                                  const std::string& dataset, const std::string& needed_by) {
   const std::string path = "/walls/" + wall + "/" + dataset;
-  if (!flow.exists(path)) flow.fail(path, "missing, needed by " + needed_by);
+  if (!flow.exists(path))
+    flow.fail(path, "missing, needed by " + needed_by);
   return flow.read_vector(path);
 }
 
-}  // namespace
+// --- inputs --------------------------------------------------------------------------------------
 
-int run(const Options& options, const Logger& log) {
-  const auto start = std::chrono::steady_clock::now();
-  // --- inputs -------------------------------------------------------------------------------
-  const auto solid_file = formats::open_checked(options.solid_mesh, "solidmesh");
-  const auto header = formats::read_header(solid_file);
-  const auto solid_in = formats::read_mesh(solid_file);
-  SolidMesh mesh = to_solid_mesh(solid_in);
-  const auto n_cells = static_cast<std::size_t>(solid_in.cell_count());
-  const auto flap_names = solid_file.read_strings("/link/flap_names");
-  const auto cell_flap = solid_file.read_index_vector("/link/cell_flap", n_cells, 0,
-                                                      static_cast<std::int64_t>(flap_names.size()));
-  const auto cell_element = solid_file.read_index_vector("/link/cell_element", n_cells, 0,
-                                                         std::numeric_limits<std::int64_t>::max());
-  const auto z_values = solid_file.read_vector("/link/point_thickness_coordinate", mesh.node_count());
-  const Eigen::VectorXd node_z = Eigen::Map<const Eigen::VectorXd>(z_values.data(), static_cast<Eigen::Index>(z_values.size()));
+// The solid side of the stage: the mesh of solidmesh.h5 and its link to the beam elements. The
+// file stays open for the errors the later phases report against it.
+struct SolidInput {
+  explicit SolidInput(const std::filesystem::path& path);
 
-  const formats::Model model = formats::read_model(options.model);
-  const std::string solid_boundary = model.thermal.solid_boundary;
-  const double emissivity = model.thermal.emissivity;
+  h5::Reader file;
+  formats::Header header;
+  formats::Mesh mesh_in;  // as read: written back to thermal.h5
+  SolidMesh mesh;         // the conduction mesh (cell materials set by assign_materials)
+  std::size_t cell_count = 0;
+  std::vector<std::string> flap_names;
+  std::vector<std::int64_t> cell_flap, cell_element;  // per cell its flap and beam element
+  Eigen::VectorXd node_z;  // [m] per node the through-thickness coordinate
+};
 
+SolidInput::SolidInput(const std::filesystem::path& path)
+    : file(formats::open_checked(path, "solidmesh")),
+      header(formats::read_header(file)),
+      mesh_in(formats::read_mesh(file)),
+      mesh(to_solid_mesh(mesh_in)),
+      cell_count(static_cast<std::size_t>(mesh_in.cell_count())) {
+  flap_names = file.read_strings("/link/flap_names");
+  cell_flap = file.read_index_vector("/link/cell_flap", cell_count, 0,
+                                     static_cast<std::int64_t>(flap_names.size()));
+  cell_element = file.read_index_vector("/link/cell_element", cell_count, 0,
+                                        std::numeric_limits<std::int64_t>::max());
+  const auto z_values = file.read_vector("/link/point_thickness_coordinate", mesh.node_count());
+  node_z = Eigen::Map<const Eigen::VectorXd>(z_values.data(),
+                                             static_cast<Eigen::Index>(z_values.size()));
+}
+
+// The model's flap of a flap of the solid mesh; both files must describe the same flaps.
+const formats::Flap& model_flap(const formats::Model& model, const std::string& name) {
+  const formats::Flap* flap = model.find_flap(name);
+  if (!flap) {
+    model.fail("/flaps/" + name,
+               "missing: the solid mesh has flap '" + name + "' but the model does not");
+  }
+  return *flap;
+}
+
+// The conductivity (and, where present, density and specific heat) of every flap's material from
+// the database, one entry per distinct material; every cell gets its flap's.
+void assign_materials(const Options& options, const formats::Model& model, SolidInput& solid,
+                      ThermalProblem& problem) {
   const auto db = formats::open_checked(options.material_db, "material-db");
-  ThermalProblem problem;
-  problem.mesh = &mesh;
   std::map<std::string, int> material_index;
-  std::vector<int> flap_material(flap_names.size());
-  std::vector<std::int64_t> flap_elements(flap_names.size());
-  for (std::size_t f = 0; f < flap_names.size(); ++f) {
-    const std::string flap_group = "/flaps/" + flap_names[f];
-    const formats::Flap* model_flap = model.find_flap(flap_names[f]);
-    if (!model_flap) {
-      model.fail(flap_group, "missing: the solid mesh has flap '" + flap_names[f] + "' but the model does not");
-    }
-    const std::string named = model_flap->material;
-    flap_elements[f] = model_flap->elements;
+  std::vector<int> flap_material(solid.flap_names.size());
+  for (std::size_t f = 0; f < solid.flap_names.size(); ++f) {
+    const std::string named = model_flap(model, solid.flap_names[f]).material;
     const std::string material = resolve_material(db, named);
     if (material.empty()) {
-      db.fail("/materials", "no material or alias '" + named + "' (flap '" + flap_names[f] + "' of " +
-                                options.model.string() + ")");
+      db.fail("/materials", "no material or alias '" + named + "' (flap '" + solid.flap_names[f] +
+                                "' of " + options.model.string() + ")");
     }
     if (!material_index.count(material)) {
       material_index[material] = static_cast<int>(problem.materials.size());
@@ -158,21 +182,38 @@ int run(const Options& options, const Logger& log) {
     }
     flap_material[f] = material_index[material];
   }
-  mesh.cell_material.resize(n_cells);
-  for (std::size_t c = 0; c < n_cells; ++c) mesh.cell_material[c] = flap_material[static_cast<std::size_t>(cell_flap[c])];
+  solid.mesh.cell_material.resize(solid.cell_count);
+  for (std::size_t c = 0; c < solid.cell_count; ++c)
+    solid.mesh.cell_material[c] = flap_material[static_cast<std::size_t>(solid.cell_flap[c])];
+}
 
-  const auto flow = formats::open_checked(options.flow, "flow");
+// The walls of flow.h5 that carry traces, with the flap and side their mesh boundary names.
+std::vector<FlowWall> traced_flow_walls(const h5::Reader& flow) {
   const auto flow_mesh = formats::read_mesh(flow);
   std::vector<FlowWall> flow_walls;
-  if (flow.exists("/walls")) {
-    for (const auto& name : flow.children("/walls")) {
-      const auto it = flow_mesh.boundaries.find(name);
-      if (it == flow_mesh.boundaries.end()) continue;
-      flow_walls.push_back({name, it->second.flap, it->second.side});
-    }
+  if (!flow.exists("/walls"))
+    return flow_walls;
+  for (const auto& name : flow.children("/walls")) {
+    const auto it = flow_mesh.boundaries.find(name);
+    if (it == flow_mesh.boundaries.end())
+      continue;
+    flow_walls.push_back({name, it->second.flap, it->second.side});
   }
+  return flow_walls;
+}
 
-  // --- boundary conditions --------------------------------------------------------------------
+// --- boundary conditions -------------------------------------------------------------------------
+
+// What the wall conditions are built from (shared by the phase's helpers).
+struct WallConditionInputs {
+  const Options& options;
+  const formats::ThermalSettings& thermal;
+  const SolidMesh& mesh;
+  const h5::Reader& flow;
+  std::string needed_by;  // the model setting that asks for the traces, for error messages
+};
+
+double longest_boundary_edge(const SolidMesh& mesh) {
   double max_edge = 0.0;
   for (const auto& [name, curve] : mesh.boundaries) {
     for (std::size_t e = 0; e < curve.size(); ++e) {
@@ -180,103 +221,157 @@ int run(const Options& options, const Logger& log) {
       max_edge = std::max(max_edge, (mesh.points.row(edge[0]) - mesh.points.row(edge[1])).norm());
     }
   }
-  // Flow and solid walls are discretised differently: allow half a solid edge at the wall ends.
-  problem.trace_tolerance = 0.5 * max_edge;
-  const std::string needed_by = options.model.string() + ": /thermal@solid_boundary = " + solid_boundary;
+  return max_edge;
+}
+
+// The condition of a solid wall with a flow trace: the flow's wall temperature, or convection
+// with its h and T_aw, each trace projected onto the solid wall (wall_mapping.hpp). Appends the
+// trace's temperatures to `trace_temperatures`.
+BoundarySpec traced_wall_condition(const WallConditionInputs& in, const std::string& name,
+                                   const FlowWall& match, std::vector<double>& trace_temperatures) {
+  const auto& curve = in.mesh.boundaries.at(name);
+  const auto x = trace_values(in.flow, match.name, "x", in.needed_by);
+  const auto y = trace_values(in.flow, match.name, "y", in.needed_by);
+  // A trace point further than a tenth of the wall from it belongs to another wall.
+  const double max_distance = 0.1 * boundary_length(in.mesh, curve);
+  auto mapped = [&](const std::string& dataset) {
+    const auto values = trace_values(in.flow, match.name, dataset, in.needed_by);
+    try {
+      return map_trace_to_boundary(
+          in.mesh, curve, x, y, values,
+          in.options.flow.string() + ": /walls/" + match.name + "/" + dataset, max_distance);
+    } catch (const std::invalid_argument& error) {
+      throw BadInput(error.what());
+    }
+  };
+  const bool imposed = in.thermal.solid_boundary == "wall_temperature";
+  const auto values = trace_values(
+      in.flow, match.name, imposed ? "temperature" : "adiabatic_wall_temperature", in.needed_by);
+  trace_temperatures.insert(trace_temperatures.end(), values.begin(), values.end());
+  if (imposed)
+    return {name, ImposedTemperature{mapped("temperature")}};
+  return {name,
+          Convection{mapped("heat_transfer_coefficient"), mapped("adiabatic_wall_temperature")}};
+}
+
+// A side facing a closed cavity (e.g. the inner side of an external flap) has no trace and is
+// taken adiabatic; a flap the flow touches nowhere is an error (wrong flow file?).
+void accept_untraced_wall(const WallConditionInputs& in, const std::vector<FlowWall>& flow_walls,
+                          const std::string& name, const formats::Boundary& boundary,
+                          const std::string& side, const Logger& log) {
+  bool flap_wetted = false;
+  for (const auto& wall : flow_walls)
+    flap_wetted |= wall.flap == boundary.flap;
+  if (!flap_wetted) {
+    in.flow.fail("/walls", "no wall trace for flap '" + boundary.flap +
+                               "' on any side, needed by solid wall '" + name + "' of " +
+                               in.options.solid_mesh.string());
+  }
+  const bool radiates = in.thermal.solid_boundary == "convection_radiation" && side == "outer";
+  log.warn("solid wall '" + name + "': no flow trace on the " + side + " side, adiabatic" +
+           std::string(radiates ? " plus radiation" : ""));
+}
+
+// Conditions of the solid_inner and solid_outer walls from the flow wall of the same flap and
+// side (run.hpp), plus radiation of the outer walls where the model asks for it. Returns the
+// temperatures of the traces used.
+std::vector<double> wall_boundary_conditions(const WallConditionInputs& in,
+                                             const formats::Mesh& solid_in,
+                                             const std::vector<FlowWall>& flow_walls,
+                                             ThermalProblem& problem, const Logger& log) {
   std::vector<double> trace_temperatures;
   for (const auto& [name, boundary] : solid_in.boundaries) {
-    if (boundary.kind != "solid_inner" && boundary.kind != "solid_outer") continue;
+    if (boundary.kind != "solid_inner" && boundary.kind != "solid_outer")
+      continue;
     const std::string side = boundary.kind == "solid_inner" ? "inner" : "outer";
-    const auto& curve = mesh.boundaries.at(name);
-    const double wall_length = boundary_length(mesh, curve);
     const FlowWall* match = nullptr;
     for (const auto& wall : flow_walls) {
-      if (wall.flap == boundary.flap && wall.side == side) match = &wall;
+      if (wall.flap == boundary.flap && wall.side == side)
+        match = &wall;
     }
     if (!match) {
-      // A side facing a closed cavity (e.g. the inner side of an external flap) has no trace and
-      // is taken adiabatic; a flap the flow touches nowhere is an error (wrong flow file?).
-      bool flap_wetted = false;
-      for (const auto& wall : flow_walls) flap_wetted |= wall.flap == boundary.flap;
-      if (!flap_wetted) {
-        flow.fail("/walls", "no wall trace for flap '" + boundary.flap + "' on any side, needed by solid wall '" +
-                                name + "' of " + options.solid_mesh.string());
-      }
-      log.warn("solid wall '" + name + "': no flow trace on the " + side + " side, adiabatic" +
-               std::string(solid_boundary == "convection_radiation" && side == "outer" ? " plus radiation" : ""));
+      accept_untraced_wall(in, flow_walls, name, boundary, side, log);
     } else {
-      const auto x = trace_values(flow, match->name, "x", needed_by);
-      const auto y = trace_values(flow, match->name, "y", needed_by);
-      const double max_distance = 0.1 * wall_length;
-      auto mapped = [&](const std::string& dataset) {
-        const auto values = trace_values(flow, match->name, dataset, needed_by);
-        try {
-          return map_trace_to_boundary(mesh, curve, x, y, values,
-                                       options.flow.string() + ": /walls/" + match->name + "/" + dataset,
-                                       max_distance);
-        } catch (const std::invalid_argument& error) {
-          throw BadInput(error.what());
-        }
-      };
-      if (solid_boundary == "wall_temperature") {
-        const auto values = trace_values(flow, match->name, "temperature", needed_by);
-        trace_temperatures.insert(trace_temperatures.end(), values.begin(), values.end());
-        problem.boundary_conditions.push_back({name, ImposedTemperature{mapped("temperature")}});
-      } else {
-        const auto values = trace_values(flow, match->name, "adiabatic_wall_temperature", needed_by);
-        trace_temperatures.insert(trace_temperatures.end(), values.begin(), values.end());
-        problem.boundary_conditions.push_back(
-            {name, Convection{mapped("heat_transfer_coefficient"), mapped("adiabatic_wall_temperature")}});
-      }
+      problem.boundary_conditions.push_back(
+          traced_wall_condition(in, name, *match, trace_temperatures));
       log.verbose("solid wall '" + name + "' <- flow wall '" + match->name + "'");
     }
-    if (solid_boundary == "convection_radiation" && side == "outer") {
-      problem.boundary_conditions.push_back({name, Radiation{emissivity, options.environment_temperature}});
+    if (in.thermal.solid_boundary == "convection_radiation" && side == "outer") {
+      problem.boundary_conditions.push_back(
+          {name, Radiation{in.thermal.emissivity, in.options.environment_temperature}});
     }
   }
-  if (options.joint_conductance > 0.0) {
-    // Each joint couples the closest pair of end walls of its two flaps.
-    auto centroid = [&](const std::string& name) {
-      const auto& curve = mesh.boundaries.at(name);
-      Eigen::Vector2d c = Eigen::Vector2d::Zero();
-      for (auto node : curve.nodes) c += mesh.points.row(node).transpose();
-      return Eigen::Vector2d(c / static_cast<double>(curve.nodes.size()));
-    };
-    for (const formats::Joint& model_joint : model.joints) {
-      const std::string& joint = model_joint.name;
-      const std::string& flap_a = model_joint.flap_a;
-      const std::string& flap_b = model_joint.flap_b;
-      double best = std::numeric_limits<double>::infinity();
-      std::string end_a, end_b;
-      for (const auto& [name_a, a] : solid_in.boundaries) {
-        if (a.kind != "solid_end" || a.flap != flap_a) continue;
-        for (const auto& [name_b, b] : solid_in.boundaries) {
-          if (b.kind != "solid_end" || b.flap != flap_b) continue;
-          const double distance = (centroid(name_a) - centroid(name_b)).norm();
-          if (distance < best) best = distance, end_a = name_a, end_b = name_b;
-        }
-      }
-      if (end_a.empty()) {
-        log.warn("joint '" + joint + "': no solid_end walls of flaps '" + flap_a + "' and '" + flap_b +
-                 "' in the solid mesh (continuous wall?); no joint contact");
-        continue;
-      }
-      problem.contacts.push_back({end_a, end_b, options.joint_conductance});
-      log.verbose("joint '" + joint + "': contact '" + end_a + "' - '" + end_b + "'");
-    }
-  }
-  if (trace_temperatures.empty()) {
-    flow.fail("/walls", "no wall trace matches a solid_inner wall of " + options.solid_mesh.string());
-  }
+  return trace_temperatures;
+}
 
-  // --- solve -----------------------------------------------------------------------------------
+// --- joint contacts ------------------------------------------------------------------------------
+
+Eigen::Vector2d curve_centroid(const SolidMesh& mesh, const std::string& name) {
+  const auto& curve = mesh.boundaries.at(name);
+  Eigen::Vector2d c = Eigen::Vector2d::Zero();
+  for (auto node : curve.nodes)
+    c += mesh.points.row(node).transpose();
+  return Eigen::Vector2d(c / static_cast<double>(curve.nodes.size()));
+}
+
+// Gap-conductance contacts (run.hpp): each joint couples the closest pair (by centroid) of end
+// walls of its two flaps; a joint whose flaps have no end walls (a continuous wall) none.
+void joint_contacts(const Options& options, const formats::Model& model, const SolidInput& solid,
+                    ThermalProblem& problem, const Logger& log) {
+  if (!(options.joint_conductance > 0.0))
+    return;
+  for (const formats::Joint& model_joint : model.joints) {
+    const std::string& joint = model_joint.name;
+    const std::string& flap_a = model_joint.flap_a;
+    const std::string& flap_b = model_joint.flap_b;
+    double best = std::numeric_limits<double>::infinity();
+    std::string end_a, end_b;
+    for (const auto& [name_a, a] : solid.mesh_in.boundaries) {
+      if (a.kind != "solid_end" || a.flap != flap_a)
+        continue;
+      for (const auto& [name_b, b] : solid.mesh_in.boundaries) {
+        if (b.kind != "solid_end" || b.flap != flap_b)
+          continue;
+        const double distance =
+            (curve_centroid(solid.mesh, name_a) - curve_centroid(solid.mesh, name_b)).norm();
+        if (distance < best)
+          best = distance, end_a = name_a, end_b = name_b;
+      }
+    }
+    if (end_a.empty()) {
+      log.warn("joint '" + joint + "': no solid_end walls of flaps '" + flap_a + "' and '" +
+               flap_b + "' in the solid mesh (continuous wall?); no joint contact");
+      continue;
+    }
+    problem.contacts.push_back({end_a, end_b, options.joint_conductance});
+    log.verbose("joint '" + joint + "': contact '" + end_a + "' - '" + end_b + "'");
+  }
+}
+
+// --- solve ---------------------------------------------------------------------------------------
+
+// Newton starts from the mean temperature of the flow traces the walls took; a solid mesh no
+// trace reaches is an error.
+double initial_temperature(const std::vector<double>& trace_temperatures, const h5::Reader& flow,
+                           const Options& options) {
+  if (trace_temperatures.empty()) {
+    flow.fail("/walls",
+              "no wall trace matches a solid_inner wall of " + options.solid_mesh.string());
+  }
   double initial = 0.0;
-  for (double t : trace_temperatures) initial += t;
-  initial /= static_cast<double>(trace_temperatures.size());
+  for (double t : trace_temperatures)
+    initial += t;
+  return initial / static_cast<double>(trace_temperatures.size());
+}
+
+// The steady nonlinear conduction solve (steady_solver.hpp); logs Newton's history and the heat
+// into the solid through every wall.
+SteadyResult solve_conduction(const ThermalProblem& problem, double initial,
+                              const NewtonSettings& newton, const Logger& log) {
   SteadyResult result;
   std::map<std::string, double> rates;
   try {
-    result = solve_steady(problem, initial, options.newton);
+    result = solve_steady(problem, initial, newton);
     const Assembler assembler(problem, false);
     rates = assembler.boundary_heat_rates(assembler.to_dofs(result.temperature), {});
   } catch (const std::invalid_argument& error) {
@@ -293,87 +388,156 @@ int run(const Options& options, const Logger& log) {
     line << "heat into the solid through '" << name << "': " << rate << " W/m";
     log.verbose(line.str());
   }
+  return result;
+}
 
-  // --- per beam element outputs ----------------------------------------------------------------
-  std::vector<std::int64_t> offsets(flap_names.size() + 1, 0);
-  for (std::size_t f = 0; f < flap_names.size(); ++f) offsets[f + 1] = offsets[f] + flap_elements[f];
-  std::vector<std::int64_t> cell_to_beam(n_cells);
-  for (std::size_t c = 0; c < n_cells; ++c) {
-    const auto f = static_cast<std::size_t>(cell_flap[c]);
-    if (cell_element[c] >= flap_elements[f]) {
-      solid_file.fail("/link/cell_element", "cell " + std::to_string(c) + " maps to element " +
-                                                std::to_string(cell_element[c]) + " of flap '" +
-                                                flap_names[f] + "', which has " +
-                                                std::to_string(flap_elements[f]) + " elements in the model");
+// --- per beam element outputs --------------------------------------------------------------------
+
+// The beam elements' temperatures (beam_outputs.hpp), numbered flap after flap: the elements of
+// flap f are offsets[f] .. offsets[f + 1] - 1.
+struct BeamElementTemperatures {
+  std::vector<std::int64_t> offsets;
+  BeamThermalOutputs outputs;
+};
+
+BeamElementTemperatures beam_element_outputs(const formats::Model& model, const SolidInput& solid,
+                                             const Eigen::VectorXd& temperature) {
+  const std::size_t flaps = solid.flap_names.size();
+  std::vector<std::int64_t> flap_elements(flaps);
+  for (std::size_t f = 0; f < flaps; ++f)
+    flap_elements[f] = model_flap(model, solid.flap_names[f]).elements;
+  BeamElementTemperatures beam;
+  beam.offsets.assign(flaps + 1, 0);
+  for (std::size_t f = 0; f < flaps; ++f)
+    beam.offsets[f + 1] = beam.offsets[f] + flap_elements[f];
+  std::vector<std::int64_t> cell_to_beam(solid.cell_count);
+  for (std::size_t c = 0; c < solid.cell_count; ++c) {
+    const auto f = static_cast<std::size_t>(solid.cell_flap[c]);
+    if (solid.cell_element[c] >= flap_elements[f]) {
+      solid.file.fail("/link/cell_element", "cell " + std::to_string(c) + " maps to element " +
+                                                std::to_string(solid.cell_element[c]) +
+                                                " of flap '" + solid.flap_names[f] +
+                                                "', which has " + std::to_string(flap_elements[f]) +
+                                                " elements in the model");
     }
-    cell_to_beam[c] = offsets[f] + cell_element[c];
+    cell_to_beam[c] = beam.offsets[f] + solid.cell_element[c];
   }
-  BeamThermalOutputs beam;
   try {
-    beam = beam_element_temperatures(mesh, result.temperature, cell_to_beam, node_z,
-                                     static_cast<std::size_t>(offsets.back()));
+    beam.outputs = beam_element_temperatures(solid.mesh, temperature, cell_to_beam, solid.node_z,
+                                             static_cast<std::size_t>(beam.offsets.back()));
   } catch (const std::invalid_argument& error) {
-    solid_file.fail("/link", error.what());
+    solid.file.fail("/link", error.what());
   }
-  const auto flux = nodal_heat_flux(problem, result.temperature);
+  return beam;
+}
 
-  // --- output ----------------------------------------------------------------------------------
+// --- output --------------------------------------------------------------------------------------
+
+std::vector<double> slice(const std::vector<double>& values, std::int64_t begin, std::int64_t end) {
+  return std::vector<double>(values.begin() + static_cast<std::ptrdiff_t>(begin),
+                             values.begin() + static_cast<std::ptrdiff_t>(end));
+}
+
+// thermal.h5 (formats/thermal): the solid mesh with nodal temperature and heat flux, the beam
+// elements' temperatures per flap, Newton's convergence and the provenance; then its XDMF sidecar.
+void write_thermal(const Options& options, const formats::ThermalSettings& thermal,
+                   const SolidInput& solid, const SteadyResult& result,
+                   const Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>& flux,
+                   const BeamElementTemperatures& beam) {
   {
     h5::Writer out(options.output);
     formats::Header out_header;
     out_header.creator = "tfmb-heat " + std::string(TFMB_HEAT_VERSION);
-    out_header.geometry = header.geometry;
-    out_header.depth = header.depth;
+    out_header.geometry = solid.header.geometry;
+    out_header.depth = solid.header.depth;
     formats::write_header(out, "thermal", out_header);
-    formats::write_mesh(out, solid_in);
+    formats::write_mesh(out, solid.mesh_in);
+    const auto& temperature = result.temperature;
     out.write("/fields/point/temperature",
-              std::vector<double>(result.temperature.data(), result.temperature.data() + result.temperature.size()),
-              "K", "nodal temperature");
+              std::vector<double>(temperature.data(), temperature.data() + temperature.size()), "K",
+              "nodal temperature");
     h5::MatrixXdR flux3 = h5::MatrixXdR::Zero(flux.rows(), 3);
     flux3.leftCols(2) = flux;
-    out.write("/fields/point/heat_flux", flux3, "W/m^2", "q = -k grad T, area-weighted nodal average");
-    for (std::size_t f = 0; f < flap_names.size(); ++f) {
-      const auto begin = static_cast<std::size_t>(offsets[f]), end = static_cast<std::size_t>(offsets[f + 1]);
-      const std::string group = "/beam/" + flap_names[f];
-      out.write(group + "/mean_temperature",
-                std::vector<double>(beam.mean_temperature.begin() + static_cast<std::ptrdiff_t>(begin),
-                                    beam.mean_temperature.begin() + static_cast<std::ptrdiff_t>(end)),
-                "K", "area mean per beam element");
+    out.write("/fields/point/heat_flux", flux3, "W/m^2",
+              "q = -k grad T, area-weighted nodal average");
+    for (std::size_t f = 0; f < solid.flap_names.size(); ++f) {
+      const std::string group = "/beam/" + solid.flap_names[f];
+      const std::int64_t begin = beam.offsets[f], end = beam.offsets[f + 1];
+      out.write(group + "/mean_temperature", slice(beam.outputs.mean_temperature, begin, end), "K",
+                "area mean per beam element");
       out.write(group + "/delta_temperature",
-                std::vector<double>(beam.temperature_difference.begin() + static_cast<std::ptrdiff_t>(begin),
-                                    beam.temperature_difference.begin() + static_cast<std::ptrdiff_t>(end)),
-                "K", "outer minus inner surface temperature of the linear fit through the thickness");
+                slice(beam.outputs.temperature_difference, begin, end), "K",
+                "outer minus inner surface temperature of the linear fit through the thickness");
     }
     out.create_group("/convergence");
-    out.set_attr("/convergence", "converged", static_cast<std::int64_t>(result.newton.converged ? 1 : 0));
+    out.set_attr("/convergence", "converged",
+                 static_cast<std::int64_t>(result.newton.converged ? 1 : 0));
     out.set_attr("/convergence", "iterations", static_cast<std::int64_t>(result.newton.iterations));
     out.set_attr("/convergence", "criterion",
-                 "largest Newton temperature update below " + std::to_string(options.newton.temperature_tolerance) + " K");
+                 "largest Newton temperature update below " +
+                     std::to_string(options.newton.temperature_tolerance) + " K");
     formats::Provenance provenance;
     provenance.command_line = options.command_line;
-    std::ostringstream settings;
-    settings << "solid_boundary = \"" << solid_boundary << "\"\nemissivity = " << emissivity
-             << "\nenvironment_temperature = " << options.environment_temperature
-             << "\njoint_conductance = " << options.joint_conductance
-             << "\ntemperature_tolerance = " << options.newton.temperature_tolerance
-             << "\nmax_iterations = " << options.newton.max_iterations << "\n";
-    provenance.settings = settings.str();
+    // Every option as given (declared once in main.cpp), then what the model resolved.
+    provenance.settings = options.settings_toml + "\n[resolved]\nsolid_boundary = " +
+                          cli::toml_string(thermal.solid_boundary) +
+                          "\nemissivity = " + cli::toml_float(thermal.emissivity) + "\n";
     provenance.inputs = {options.solid_mesh, options.flow, options.model, options.material_db};
     formats::write_provenance(out, provenance);
     out.commit();
   }
   formats::write_xdmf_sidecar(options.output);
+}
 
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+// The summary line; a result Newton did not converge to is written (flagged) and then reported
+// as NotConverged (exit 1).
+void report_result(const Options& options, const SolidMesh& mesh, const SteadyResult& result,
+                   double seconds, const Logger& log) {
   std::ostringstream summary;
   summary << mesh.node_count() << " nodes, " << result.newton.iterations << " Newton iterations, T "
           << result.temperature.minCoeff() << " .. " << result.temperature.maxCoeff() << " K, "
           << seconds << " s -> " << options.output.string();
   if (!result.newton.converged) {
-    throw NotConverged("Newton did not converge in " + std::to_string(options.newton.max_iterations) +
+    throw NotConverged("Newton did not converge in " +
+                       std::to_string(options.newton.max_iterations) +
                        " iterations (result written, flagged in /convergence): " + summary.str());
   }
   log.summary(summary.str());
+}
+
+}  // namespace
+
+// The phases, in the order of the sections above: inputs (solid mesh, model, materials, flow
+// walls), boundary conditions from the flow wall traces, joint contacts, the solve, the per beam
+// element outputs, thermal.h5.
+int run(const Options& options, const Logger& log) {
+  const auto start = std::chrono::steady_clock::now();
+  SolidInput solid(options.solid_mesh);
+  const formats::Model model = formats::read_model(options.model);
+  ThermalProblem problem;
+  problem.mesh = &solid.mesh;
+  assign_materials(options, model, solid, problem);
+  const auto flow = formats::open_checked(options.flow, "flow");
+  const std::vector<FlowWall> flow_walls = traced_flow_walls(flow);
+
+  // Flow and solid walls are discretised differently: allow half a solid edge at the wall ends.
+  problem.trace_tolerance = 0.5 * longest_boundary_edge(solid.mesh);
+  const WallConditionInputs walls{
+      options, model.thermal, solid.mesh, flow,
+      options.model.string() + ": /thermal@solid_boundary = " + model.thermal.solid_boundary};
+  const auto trace_temperatures =
+      wall_boundary_conditions(walls, solid.mesh_in, flow_walls, problem, log);
+  joint_contacts(options, model, solid, problem, log);
+
+  const double initial = initial_temperature(trace_temperatures, flow, options);
+  const SteadyResult result = solve_conduction(problem, initial, options.newton, log);
+  const BeamElementTemperatures beam = beam_element_outputs(model, solid, result.temperature);
+  const auto flux = nodal_heat_flux(problem, result.temperature);
+  write_thermal(options, model.thermal, solid, result, flux, beam);
+
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  report_result(options, solid.mesh, result, seconds, log);
   return 0;
 }
 

@@ -16,12 +16,12 @@
 namespace tfmb::beam {
 
 struct DynamicOptions {
-  double time_step = 1e-3;       // [s]
-  double end_time = 1.0;         // [s]
-  double rho_infinity = 0.8;     // high-frequency spectral radius in [0, 1]
+  double time_step = 1e-3;    // [s]
+  double end_time = 1.0;      // [s]
+  double rho_infinity = 0.8;  // high-frequency spectral radius in [0, 1]
   int max_iterations = 20;
-  int max_cutbacks = 8;          // halvings of the time step after a failed Newton iteration
-  double tolerance = 1e-9;       // relative residual
+  int max_cutbacks = 8;     // halvings of the time step after a failed Newton iteration
+  double tolerance = 1e-9;  // relative residual
   /// Load multiplier as a function of time (also drives prescribed joint rotations).
   std::function<double(double)> load_function = [](double) { return 1.0; };
   /// Called after every step with (time, state, solver) for output.
@@ -65,6 +65,8 @@ class DynamicSolver {
   double potential_energy(const State& state, double time) const;
 
  private:
+  Eigen::VectorXd initial_velocity() const;
+
   Assembly& assembly_;
   DynamicOptions options_;
   MassModel mass_;
