@@ -2,13 +2,14 @@
 
 #include <cmath>
 #include <numeric>
-#include <sstream>
 
 #include "tfmb/common/cli.hpp"
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
+#include "tfmb/common/options.hpp"
 #include "tfmb/common/text.hpp"
 #include "tfmb/formats/files.hpp"
+#include "tfmb/formats/flow.hpp"
 #include "tfmb/formats/schema.hpp"
 
 namespace tfmb::flow {
@@ -64,29 +65,26 @@ LoadedMesh load_mesh(const std::filesystem::path& file) {
   return out;
 }
 
-std::vector<State> read_restart(const std::filesystem::path& file, const LoadedMesh& lm) {
-  const h5::Reader reader = formats::open_checked(file, "flow");
-  const formats::Mesh rm = formats::read_mesh(reader);
+// The state of an earlier run on a mesh of the same topology (--restart): its node states (the
+// reader refused non-physical ones) and, where it has them, nu_tilde and the residual reference.
+formats::Flow read_restart(const std::filesystem::path& file, const LoadedMesh& lm) {
+  formats::Flow restart = formats::read_flow(file);
+  const formats::Mesh& rm = restart.mesh;
   const auto& fm = lm.file_mesh;
   if (rm.node_count() != fm.node_count() || rm.triangles != fm.triangles || rm.quads != fm.quads) {
-    throw BadInput(file.string() + ": /mesh: restart mesh has a different topology (" +
-                   std::to_string(rm.node_count()) + " nodes, " + std::to_string(rm.cell_count()) +
-                   " cells) than the flow mesh (" + std::to_string(fm.node_count()) + " nodes, " +
-                   std::to_string(fm.cell_count()) + " cells)");
+    restart.fail("/mesh", "restart mesh has a different topology (" + std::to_string(rm.node_count()) +
+                              " nodes, " + std::to_string(rm.cell_count()) + " cells) than the flow mesh (" +
+                              std::to_string(fm.node_count()) + " nodes, " + std::to_string(fm.cell_count()) +
+                              " cells)");
   }
-  const std::size_t n = fm.node_count();
-  const auto rho = reader.read_vector("/fields/point/density", n);
-  const auto vel = reader.read_matrix("/fields/point/velocity", n, 3);
-  const auto p = reader.read_vector("/fields/point/pressure", n);
-  std::vector<State> w(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    if (!(rho[k] > 0.0) || !(p[k] > 0.0) || !std::isfinite(vel(k, 0)) ||
-        !std::isfinite(vel(k, 1))) {
-      throw BadInput(
-          file.string() + ": /fields/point: node " + std::to_string(k) +
-          " has a non-physical state (density and pressure must be positive and finite)");
-    }
-    w[k] = {rho[k], vel(k, 0), vel(k, 1), p[k]};
+  return restart;
+}
+
+std::vector<State> primitive_states(const formats::Flow& flow) {
+  std::vector<State> w(flow.density.size());
+  for (std::size_t k = 0; k < w.size(); ++k) {
+    const auto row = static_cast<Eigen::Index>(k);
+    w[k] = {flow.density[k], flow.velocity(row, 0), flow.velocity(row, 1), flow.pressure[k]};
   }
   return w;
 }
@@ -180,12 +178,11 @@ RunResult run(const RunOptions& o, const Logger& log) {
   const double c_ref = std::sqrt(o.gamma * o.gas_constant * t_ref);
   settings.reference_state = {rho_ref, c_ref, c_ref, p_ref};
 
-  if (o.restart_file && settings.residual_reference <= 0.0) {
+  const std::optional<formats::Flow> restart =
+      o.restart_file ? std::optional<formats::Flow>(read_restart(*o.restart_file, lm)) : std::nullopt;
+  if (restart && settings.residual_reference <= 0.0 && restart->convergence.residual_reference) {
     // continue the residual drop of the run being restarted
-    const h5::Reader reader(*o.restart_file);
-    if (reader.has_attr("/convergence", "residual_reference")) {
-      settings.residual_reference = reader.attr_f64("/convergence", "residual_reference");
-    }
+    settings.residual_reference = *restart->convergence.residual_reference;
   }
   if (has_inflow && !o.restart_file) {
     // A jet started from air at rest: open the valve over the first iterations (see
@@ -198,13 +195,10 @@ RunResult run(const RunOptions& o, const Logger& log) {
   }
   FlowSolver solver(lm.mesh, lm.geometry, gas, bcs, settings);
   if (o.restart_file) {
-    solver.set_primitive(read_restart(*o.restart_file, lm));
+    solver.set_primitive(primitive_states(*restart));
     if (turbulent) {
-      const h5::Reader reader(*o.restart_file);
-      if (reader.is_dataset("/fields/point/nu_tilde")) {
-        const auto nu_tilde =
-            reader.read_vector("/fields/point/nu_tilde", lm.file_mesh.node_count());
-        solver.set_nu_tilde({nu_tilde.begin(), nu_tilde.end()});
+      if (!restart->nu_tilde.empty()) {
+        solver.set_nu_tilde(restart->nu_tilde);
       } else {
         log.info(
             "restart file has no /fields/point/nu_tilde: Spalart-Allmaras starts from the "
@@ -436,170 +430,128 @@ RunResult run(const RunOptions& o, const Logger& log) {
                           ", p " + text::format_number(p[k]) + "); nothing written");
     }
   }
-  {
-    h5::Writer w(o.output);
-    formats::Header header;
-    header.creator = "tfmb-flow " + cli::version();
-    header.geometry = lm.geometry == Geometry::axisymmetric ? "axisymmetric" : "planar";
-    header.depth = lm.depth;
-    formats::write_header(w, "flow", header);
-    formats::write_mesh(w, lm.file_mesh);
-    w.write("/fields/point/density", rho, "kg/m^3");
-    w.write("/fields/point/velocity", vel, "m/s", "u, v, 0");
-    w.write("/fields/point/pressure", p, "Pa", "static pressure");
-    w.write("/fields/point/temperature", temp, "K", "static temperature");
-    w.write("/fields/point/mach", mach, "1");
-    if (turbulent) {
-      w.write("/fields/point/nu_tilde", nu_tilde, "m^2/s", "Spalart-Allmaras variable");
-      w.write("/fields/point/eddy_viscosity", eddy_viscosity, "Pa s");
-      w.write("/fields/point/wall_distance", solver.wall_distance(), "m");
-    }
-    for (std::size_t c = 0; c < wall_curves.size(); ++c) {
-      const int b = wall_curves[c];
-      const WallTrace& t = traces[c];
-      const std::string g = "/walls/" + lm.mesh.boundaries[b].name;
-      std::vector<std::int64_t> node(t.node.size());
-      for (std::size_t k = 0; k < node.size(); ++k)
-        node[k] = t.node[k];
-      w.write(g + "/node", node, "1");
-      w.write(g + "/s", t.s, "m", "arc length along the wall");
-      w.write(g + "/x", t.x, "m");
-      w.write(g + "/y", t.y, "m");
-      w.write(g + "/pressure", t.pressure, "Pa", "wall static pressure");
-      w.write(g + "/temperature", t.temperature, "K", "wall temperature");
-      w.write(g + "/wall_shear", t.shear_stress, "Pa", "along the direction of increasing s");
-      w.write(g + "/heat_flux", t.heat_flux, "W/m^2", "into the wall");
-      h5::MatrixXdR normal(static_cast<Eigen::Index>(t.normal.size()), 2);
-      for (std::size_t k = 0; k < t.normal.size(); ++k)
-        normal.row(static_cast<Eigen::Index>(k)) << t.normal[k].x, t.normal[k].y;
-      w.write(g + "/normal", normal, "1", "unit normal leaving the fluid (into the wall)");
-      if (result.time_average) {
-        w.write(g + "/pressure_rms", result.time_average->pressure_rms[c], "Pa",
-                "root mean square of the wall pressure fluctuation over the statistics window");
-      }
-      if (!heat_transfer.empty()) {
-        w.write(g + "/adiabatic_wall_temperature", t.temperature, "K",
-                "wall temperature of the adiabatic solution");
-        w.write(g + "/heat_transfer_coefficient", heat_transfer[c], "W/(m^2 K)",
-                "q_w / (T_aw - T_w) of an isothermal probe run " +
-                    text::format_number(heat_transfer_dt) + " K below T_aw");
-      }
-    }
-    w.create_group("/integrals");
-    w.set_attr("/integrals", "mass_flow", result.mass_flow);
-    w.set_attr("/integrals", "thrust_x", result.thrust_x);
-    w.set_attr("/integrals", "thrust_y", result.thrust_y);
-    w.set_attr("/integrals", "thrust_angle",
-               std::atan2(result.thrust_y, result.thrust_x) * 180.0 / std::acos(-1.0));
-    w.set_attr("/integrals", "discharge_coefficient", result.discharge_coefficient);
-    w.create_group("/conditions");
-    w.set_attr("/conditions", "stagnation_pressure", o.stagnation_pressure);
-    w.set_attr("/conditions", "stagnation_temperature", o.stagnation_temperature);
-    w.set_attr("/conditions", "ambient_pressure", o.ambient_pressure);
-    w.set_attr("/conditions", "gamma", o.gamma);
-    w.set_attr("/conditions", "gas_constant", o.gas_constant);
-    w.create_group("/convergence");
-    w.set_attr("/convergence", "converged", static_cast<std::int64_t>(rep.converged ? 1 : 0));
-    std::string criterion = "density residual (RMS of residual/volume) below " +
-                            text::format_number(settings.residual_drop) + " of its largest value";
-    if (settings.stationary_tolerance > 0.0) {
-      criterion +=
-          ", or wall pressure (relative to " + text::format_number(settings.reference_state[3]) +
-          " Pa) and wall pressure force changing by less than " +
-          text::format_number(settings.stationary_tolerance) + " per iteration for " +
-          std::to_string(settings.stationary_iterations) + " iterations" +
-          (rep.converged
-               ? (rep.converged_by_stationarity ? " (met: stationarity)" : " (met: residual)")
-               : "");
-    }
-    if (result.time_average) {
-      criterion = "time average over steps " + std::to_string(o.time.statistics_start) + ".." +
-                  std::to_string(o.time.time_steps) +
-                  ": wall pressure means of the window's two halves within " +
-                  text::format_number(o.time.statistics_tolerance) + " of " +
-                  text::format_number(settings.reference_state[3]) + " Pa";
-    }
-    w.set_attr("/convergence", "criterion", criterion);
-    w.set_attr("/convergence", "iterations", static_cast<std::int64_t>(rep.iterations));
-    w.set_attr("/convergence", "residual_reference", rep.residual_reference);
-    w.set_attr("/convergence", "linear_iterations",
-               static_cast<std::int64_t>(rep.linear_iterations));
-    w.set_attr("/convergence", "residual_evaluations",
-               static_cast<std::int64_t>(rep.residual_evaluations));
-    w.set_attr("/convergence", "residual_seconds", rep.residual_seconds);
-    w.set_attr("/convergence", "wall_time", rep.wall_time);
-    if (!rep.converged && !rep.stop_reason.empty()) {
-      w.set_attr("/convergence", "stop_reason", rep.stop_reason);
-      w.set_attr("/convergence", "worst_residual_x", rep.worst_residual_at.x);
-      w.set_attr("/convergence", "worst_residual_y", rep.worst_residual_at.y);
-      w.set_attr("/convergence", "least_relaxation", rep.least_relaxation);
-      w.set_attr("/convergence", "least_relaxed_x", rep.least_relaxed_at.x);
-      w.set_attr("/convergence", "least_relaxed_y", rep.least_relaxed_at.y);
-    }
-    if (result.time_average) {
-      const TimeAccurateResult& ta = *result.time_average;
-      w.set_attr("/convergence", "time_average", static_cast<std::int64_t>(1));
-      w.set_attr("/convergence", "time_step", o.time.time_step);
-      w.set_attr("/convergence", "time_steps", static_cast<std::int64_t>(o.time.time_steps));
-      w.set_attr("/convergence", "statistics_start",
-                 static_cast<std::int64_t>(o.time.statistics_start));
-      w.set_attr("/convergence", "averaged_steps", static_cast<std::int64_t>(ta.averaged_steps));
-      w.set_attr("/convergence", "mean_change", ta.mean_change);
-      std::vector<double> th;
-      for (const auto& rec : ta.history) {
-        th.insert(th.end(), {rec.time, static_cast<double>(rec.inner_iterations),
-                             rec.inner_residual_drop, rec.wall_force.x, rec.wall_force.y});
-      }
-      w.write_array("/convergence/time_history", th, {ta.history.size(), 5}, "1",
-                    "per physical step: time [s], inner iterations, inner residual drop reached, "
-                    "wall pressure force x and y [N/m planar, N/rad axisymmetric]");
-    }
-    // Each equation's residual relative to its largest value in the run, the measure the
-    // convergence criterion uses for the density: a jet started from air at rest has no density
-    // residual at all in its first iteration, so the first value is no reference.
-    std::vector<double> history;
-    State largest{};
-    for (const auto& rec : rep.history) {
-      for (int v = 0; v < 4; ++v)
-        largest[v] = std::max(largest[v], rec.residual[v]);
-    }
-    for (const auto& rec : rep.history) {
-      for (int v = 0; v < 4; ++v)
-        history.push_back(largest[v] > 0.0 ? rec.residual[v] / largest[v] : 0.0);
-    }
-    w.write_array(
-        "/convergence/residual_history", history, {rep.history.size(), 4}, "1",
-        "per iteration: RMS residual of continuity, x-momentum, y-momentum, energy relative to "
-        "its largest value in the run");
-    formats::Provenance prov;
-    prov.command_line = o.command_line;
-    std::ostringstream s;
-    s << "model = \"" << o.model << "\"\norder = " << settings.order
-      << "\ncfl_start = " << settings.cfl_start << "\ncfl_max = " << settings.cfl_max
-      << "\nmax_iterations = " << settings.max_iterations
-      << "\nresidual_drop = " << settings.residual_drop
-      << "\nentropy_fix = " << settings.entropy_fix << "\nfarfield_flux = \"" << o.farfield_flux
-      << "\""
-      << "\nlimiter = " << (settings.limiter ? "true" : "false")
-      << "\nvenkat_wang = " << settings.venkat_wang
-      << "\nwall_aligned_aspect_ratio = " << settings.wall_aligned_aspect_ratio
-      << "\nmatrix_free = \"" << o.matrix_free << "\""
-      << "\nrestart_limiter = \"" << o.restart_limiter << "\""
-      << "\nfirst_order_start = " << (o.first_order_start ? "true" : "false")
-      << "\nfirst_order_start_drop = " << o.first_order_start_drop
-      << "\neisenstat_walker = " << (settings.eisenstat_walker ? "true" : "false")
-      << "\nlimiter_stall_iterations = " << settings.limiter_stall_iterations
-      << "\nturbulence_coupling = \"" << o.turbulence_coupling << "\""
-      << "\nturbulence_jacobian = \"" << o.turbulence_jacobian << "\""
-      << "\nthreads = " << settings.threads << "\n";
-    prov.settings = s.str();
-    prov.inputs = {o.mesh_file};
-    if (o.restart_file)
-      prov.inputs.push_back(*o.restart_file);
-    formats::write_provenance(w, prov);
-    w.commit();
+  formats::Flow out;
+  out.header.creator = "tfmb-flow " + cli::version();
+  out.header.geometry = lm.geometry == Geometry::axisymmetric ? "axisymmetric" : "planar";
+  out.header.depth = lm.depth;
+  out.mesh = lm.file_mesh;
+  out.density = rho;
+  out.velocity = vel;
+  out.pressure = p;
+  out.temperature = temp;
+  out.mach = mach;
+  if (turbulent) {
+    out.nu_tilde = nu_tilde;
+    out.eddy_viscosity = eddy_viscosity;
+    out.wall_distance = solver.wall_distance();
   }
-  formats::write_xdmf_sidecar(o.output);
+  for (std::size_t c = 0; c < wall_curves.size(); ++c) {
+    const WallTrace& t = traces[c];
+    formats::FlowWall wall;
+    wall.name = lm.mesh.boundaries[wall_curves[c]].name;
+    wall.node.assign(t.node.begin(), t.node.end());
+    wall.s = t.s;
+    wall.x = t.x;
+    wall.y = t.y;
+    wall.pressure = t.pressure;
+    wall.temperature = t.temperature;
+    wall.wall_shear = t.shear_stress;
+    wall.heat_flux = t.heat_flux;
+    for (const Vec2& normal : t.normal) wall.normal.emplace_back(normal.x, normal.y);
+    if (result.time_average) wall.pressure_rms = result.time_average->pressure_rms[c];
+    if (!heat_transfer.empty()) {
+      wall.adiabatic_wall_temperature = t.temperature;
+      wall.heat_transfer_coefficient = heat_transfer[c];
+    }
+    out.walls.push_back(std::move(wall));
+  }
+  out.mass_flow = result.mass_flow;
+  out.thrust_x = result.thrust_x;
+  out.thrust_y = result.thrust_y;
+  out.thrust_angle = std::atan2(result.thrust_y, result.thrust_x) * 180.0 / std::acos(-1.0);
+  out.discharge_coefficient = result.discharge_coefficient;
+  out.stagnation_pressure = o.stagnation_pressure;
+  out.stagnation_temperature = o.stagnation_temperature;
+  out.ambient_pressure = o.ambient_pressure;
+  out.gamma = o.gamma;
+  out.gas_constant = o.gas_constant;
+  formats::FlowConvergence& convergence = out.convergence;
+  convergence.converged = rep.converged;
+  std::string criterion = "density residual (RMS of residual/volume) below " +
+                          text::format_number(settings.residual_drop) + " of its largest value";
+  if (settings.stationary_tolerance > 0.0) {
+    criterion +=
+        ", or wall pressure (relative to " + text::format_number(settings.reference_state[3]) +
+        " Pa) and wall pressure force changing by less than " +
+        text::format_number(settings.stationary_tolerance) + " per iteration for " +
+        std::to_string(settings.stationary_iterations) + " iterations" +
+        (rep.converged
+             ? (rep.converged_by_stationarity ? " (met: stationarity)" : " (met: residual)")
+             : "");
+  }
+  if (result.time_average) {
+    criterion = "time average over steps " + std::to_string(o.time.statistics_start) + ".." +
+                std::to_string(o.time.time_steps) +
+                ": wall pressure means of the window's two halves within " +
+                text::format_number(o.time.statistics_tolerance) + " of " +
+                text::format_number(settings.reference_state[3]) + " Pa";
+  }
+  convergence.criterion = criterion;
+  convergence.iterations = rep.iterations;
+  convergence.residual_reference = rep.residual_reference;
+  convergence.linear_iterations = rep.linear_iterations;
+  convergence.residual_evaluations = rep.residual_evaluations;
+  convergence.residual_seconds = rep.residual_seconds;
+  convergence.wall_time = rep.wall_time;
+  if (!rep.converged && !rep.stop_reason.empty()) {
+    convergence.stop_reason = rep.stop_reason;
+    convergence.worst_residual_x = rep.worst_residual_at.x;
+    convergence.worst_residual_y = rep.worst_residual_at.y;
+    convergence.least_relaxation = rep.least_relaxation;
+    convergence.least_relaxed_x = rep.least_relaxed_at.x;
+    convergence.least_relaxed_y = rep.least_relaxed_at.y;
+  }
+  if (result.time_average) {
+    const TimeAccurateResult& ta = *result.time_average;
+    convergence.time_average = true;
+    convergence.time_step = o.time.time_step;
+    convergence.time_steps = o.time.time_steps;
+    convergence.statistics_start = o.time.statistics_start;
+    convergence.averaged_steps = ta.averaged_steps;
+    convergence.mean_change = ta.mean_change;
+    convergence.time_history.resize(static_cast<Eigen::Index>(ta.history.size()), 5);
+    for (std::size_t k = 0; k < ta.history.size(); ++k) {
+      const auto& rec = ta.history[k];
+      convergence.time_history.row(static_cast<Eigen::Index>(k))
+          << rec.time, static_cast<double>(rec.inner_iterations), rec.inner_residual_drop, rec.wall_force.x,
+          rec.wall_force.y;
+    }
+  }
+  // Each equation's residual relative to its largest value in the run, the measure the
+  // convergence criterion uses for the density: a jet started from air at rest has no density
+  // residual at all in its first iteration, so the first value is no reference.
+  std::vector<double> history;
+  State largest{};
+  for (const auto& rec : rep.history) {
+    for (int v = 0; v < 4; ++v)
+      largest[v] = std::max(largest[v], rec.residual[v]);
+  }
+  for (const auto& rec : rep.history) {
+    for (int v = 0; v < 4; ++v)
+      history.push_back(largest[v] > 0.0 ? rec.residual[v] / largest[v] : 0.0);
+  }
+  convergence.residual_history =
+      Eigen::Map<const h5::MatrixXdR>(history.data(), static_cast<Eigen::Index>(rep.history.size()), 4);
+  formats::Provenance prov;
+  prov.command_line = o.command_line;
+  // Every option as given (declared once in main.cpp), then what the run resolved from them.
+  prov.settings = o.settings_toml + "\n[resolved]\norder = " + std::to_string(settings.order) +
+                  "\ncfl_max = " + cli::toml_float(settings.cfl_max) + "\nlimiter = " +
+                  (settings.limiter ? "true" : "false") + "\nthreads = " + std::to_string(settings.threads) + "\n";
+  prov.inputs = {o.mesh_file};
+  if (o.restart_file)
+    prov.inputs.push_back(*o.restart_file);
+  formats::write_flow(o.output, out, prov);
   if (!rep.converged && !rep.stop_reason.empty()) {
     log.warn("not converged: " + rep.stop_reason + "; largest density residual at (" +
              text::format_number(rep.worst_residual_at.x) + ", " +

@@ -15,6 +15,7 @@
 #include "tfmb/beam/static_solver.hpp"
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
+#include "tfmb/common/options.hpp"
 #include "tfmb/formats/files.hpp"
 #include "tfmb/formats/loads.hpp"
 #include "tfmb/formats/materials.hpp"
@@ -388,10 +389,8 @@ void write_structure(const Options& options, const FileModel& fm, const Assembly
   }
   formats::Provenance prov;
   prov.command_line = options.command_line;
-  std::ostringstream settings;
-  settings << "analysis = \"" << analysis << "\"\nrho_infinity = " << options.rho_infinity
-           << "\ndead_loads = " << (options.dead_loads ? "true" : "false") << "\n";
-  prov.settings = settings.str();
+  // Every option as given (declared once in main.cpp), then the analysis the model resolved.
+  prov.settings = options.settings_toml + "\n[resolved]\nanalysis = " + cli::toml_string(analysis) + "\n";
   prov.inputs.push_back(options.model);
   if (!options.loads.empty()) prov.inputs.push_back(options.loads);
   if (!options.materials.empty()) prov.inputs.push_back(options.materials);
