@@ -103,7 +103,10 @@ Mesh read_mesh(const h5::Reader& file) {
       mesh.regions[name] = file.read_index_vector("/mesh/regions/" + name, {}, 0, cells);
     }
   }
-  for (const auto& name : file.children("/mesh/boundaries")) {
+  // The schema makes boundaries optional (a mesh of one region may have none named).
+  const std::vector<std::string> boundary_names =
+      file.is_group("/mesh/boundaries") ? file.children("/mesh/boundaries") : std::vector<std::string>{};
+  for (const auto& name : boundary_names) {
     const std::string group = "/mesh/boundaries/" + name;
     Boundary boundary;
     boundary.edges = file.read_index_matrix(group + "/edges", {}, 2, 0, n);

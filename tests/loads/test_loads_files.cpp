@@ -271,13 +271,14 @@ TEST(LoadsFiles, TheWallNormalsSayWhereTheFluidIs) {
     const Files files(name);
     const tf::TestFlap& flap = files.flaps[0];
     auto p = [](const Vec2&) { return 2e5; };
+    auto ambient = [](const Vec2&) { return 1e5; };  // wall pressures are absolute: positive
     auto zero = [](const Vec2&) { return 0.0; };
     tf::write_flow(
         files.flow,
         {tf::make_trace("in", flap.name, "inner", flap.inner_wall, p, zero, fluid_side),
-         tf::make_trace("out", flap.name, "outer", flap.outer_wall, zero, zero, -fluid_side),
-         tf::make_trace("lower_in", "lower", "inner", files.flaps[1].inner_wall, zero, zero, 1.0),
-         tf::make_trace("lower_out", "lower", "outer", files.flaps[1].outer_wall, zero, zero,
+         tf::make_trace("out", flap.name, "outer", flap.outer_wall, ambient, zero, -fluid_side),
+         tf::make_trace("lower_in", "lower", "inner", files.flaps[1].inner_wall, ambient, zero, 1.0),
+         tf::make_trace("lower_out", "lower", "outer", files.flaps[1].outer_wall, ambient, zero,
                         -1.0)});
     const auto out = files.dir / "loads.h5";
     EXPECT_EQ(run_cli("forces " + files.flow.string() + " " + files.model.string() + " -o " +

@@ -8,56 +8,40 @@
 
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
+#include "tfmb/formats/flow.hpp"
 #include "tfmb/formats/loads.hpp"
 #include "tfmb/formats/model.hpp"
 #include "tfmb/formats/schema.hpp"
 #include "tfmb/formats/structure.hpp"
+#include "tfmb/formats/walldisp.hpp"
 
 namespace tfmb::loads {
 
 namespace {
 
-Side parse_side(const h5::Reader& file, const std::string& object, const std::string& side) {
+Side parse_side(const formats::Flow& file, const std::string& object, const std::string& side) {
   if (side == "inner") return Side::inner;
   if (side == "outer") return Side::outer;
   if (side == "end") return Side::end;
   file.fail(object, "side '" + side + "' is not inner, outer or end");
 }
 
-h5::MatrixXdR rows3(const std::vector<Vec2>& v, bool as_3d = true) {
-  h5::MatrixXdR m = h5::MatrixXdR::Zero(static_cast<Eigen::Index>(v.size()), as_3d ? 3 : 2);
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    m(static_cast<Eigen::Index>(i), 0) = v[i].x();
-    m(static_cast<Eigen::Index>(i), 1) = v[i].y();
-  }
-  return m;
-}
-
 // Which side of a trace the fluid is on, from the flow file's wall normals (flow 1.4: unit
 // normals leaving the fluid): the sign that turns the segments' left normals out of the solid,
 // i.e. against the flow's normals, by a length-weighted vote over the segments.
-double fluid_side(const h5::Reader& file, const std::string& group, const WallTrace& trace) {
-  if (!file.exists(group + "/normal")) {
-    file.fail(group,
-              "no /normal: tfmb-loads needs each flap wall's normal (flow 1.4) to know which side "
-              "the fluid is on; re-run tfmb-flow, or have the external flow code write it");
-  }
-  const h5::MatrixXdR normal =
-      file.read_matrix(group + "/normal", static_cast<Eigen::Index>(trace.points.size()), 2);
-  for (Eigen::Index k = 0; k < normal.rows(); ++k) {
-    if (std::abs(normal.row(k).norm() - 1.0) > 1e-6)
-      file.fail(group + "/normal", "row " + std::to_string(k) + " is not a unit vector");
+double fluid_side(const formats::Flow& flow, const formats::FlowWall& wall, const WallTrace& trace) {
+  const std::string group = "/walls/" + wall.name;
+  if (wall.normal.empty()) {
+    flow.fail(group, "no /normal: tfmb-loads needs each flap wall's normal (flow 1.4) to know which side "
+                     "the fluid is on; re-run tfmb-flow, or have the external flow code write it");
   }
   double vote = 0.0;
   for (std::size_t k = 0; k < trace.segment_count(); ++k) {
-    const Vec2 into_wall =
-        (normal.row(static_cast<Eigen::Index>(k)) + normal.row(static_cast<Eigen::Index>(k + 1)))
-            .transpose();
+    const Vec2 into_wall = wall.normal[k] + wall.normal[k + 1];
     const Vec2 e = trace.points[k + 1] - trace.points[k];
     vote -= Vec2(-e.y(), e.x()).dot(into_wall);  // left normal against the flow's normal
   }
-  if (vote == 0.0)
-    file.fail(group + "/normal", "cannot tell on which side of the wall the fluid is");
+  if (vote == 0.0) flow.fail(group + "/normal", "cannot tell on which side of the wall the fluid is");
   return vote > 0.0 ? 1.0 : -1.0;
 }
 
@@ -79,52 +63,44 @@ Model read_model(const std::filesystem::path& file) {
 
 FlowTraces read_flow_traces(const std::filesystem::path& file,
                             const std::filesystem::path& reference_mesh) {
-  const h5::Reader reader = formats::open_checked(file, "flow");
+  const formats::Flow flow = formats::read_flow(file);
   h5::MatrixXdR reference_points;
   if (!reference_mesh.empty()) {
-    const formats::Mesh reference =
-        formats::read_mesh(formats::open_checked(reference_mesh, "flowmesh"));
-    reference_points = reference.points;
+    reference_points = formats::read_mesh(formats::open_checked(reference_mesh, "flowmesh")).points;
+    if (static_cast<std::size_t>(reference_points.rows()) != flow.mesh.node_count()) {
+      flow.fail("/mesh/points", std::to_string(flow.mesh.node_count()) + " nodes, but the reference mesh " +
+                                    reference_mesh.string() + " has " + std::to_string(reference_points.rows()) +
+                                    " (not the same topology)");
+    }
   }
   FlowTraces out;
-  out.header = formats::read_header(reader);
-  const auto node_count =
-      static_cast<std::int64_t>(reader.read_matrix("/mesh/points", std::nullopt, 2).rows());
-  const std::vector<std::string> names =
-      reader.is_group("/walls") ? reader.children("/walls") : std::vector<std::string>{};
-  for (const std::string& name : names) {
-    const std::string g = "/walls/" + name;
-    const std::string b = "/mesh/boundaries/" + name;
-    if (!reader.exists(b) || !reader.has_attr(b, "flap") || reader.attr_string(b, "flap").empty()) {
-      out.skipped.push_back(name);
+  out.header = flow.header;
+  for (const formats::FlowWall& wall : flow.walls) {
+    const std::string g = "/walls/" + wall.name;
+    const auto boundary = flow.mesh.boundaries.find(wall.name);
+    if (boundary == flow.mesh.boundaries.end() || boundary->second.flap.empty()) {
+      out.skipped.push_back(wall.name);
       continue;
     }
+    const std::string b = "/mesh/boundaries/" + wall.name;
     WallTrace trace;
-    trace.name = name;
-    trace.flap = reader.attr_string(b, "flap");
-    if (!reader.has_attr(b, "side")) reader.fail(b, "a flap wall needs a 'side' attribute (inner, outer or end)");
-    trace.side = parse_side(reader, b, reader.attr_string(b, "side"));
-    const std::vector<double> x = reader.read_vector(g + "/x");
-    const std::vector<double> y = reader.read_vector(g + "/y", x.size());
-    trace.pressure = reader.read_vector(g + "/pressure", x.size());
-    trace.wall_shear = reader.read_vector(g + "/wall_shear", x.size());
-    for (std::size_t i = 0; i < x.size(); ++i) trace.points.emplace_back(x[i], y[i]);
+    trace.name = wall.name;
+    trace.flap = boundary->second.flap;
+    if (boundary->second.side.empty()) flow.fail(b, "a flap wall needs a 'side' attribute (inner, outer or end)");
+    trace.side = parse_side(flow, b, boundary->second.side);
+    trace.pressure = wall.pressure;
+    trace.wall_shear = wall.wall_shear;
+    for (std::size_t i = 0; i < wall.x.size(); ++i) trace.points.emplace_back(wall.x[i], wall.y[i]);
     try {
       check_trace(trace);
     } catch (const std::invalid_argument& e) {
-      reader.fail(g, e.what());
+      flow.fail(g, e.what());
     }
-    const std::vector<std::int64_t> nodes =
-        reader.read_index_vector(g + "/node", x.size(), 0, node_count);
-    trace.normal_sign = fluid_side(reader, g, trace);
+    trace.normal_sign = fluid_side(flow, wall, trace);
     if (reference_points.rows() > 0) {
-      if (reference_points.rows() != node_count) {
-        reader.fail("/mesh/points", std::to_string(node_count) + " nodes, but the reference mesh " +
-                                        reference_mesh.string() + " has " +
-                                        std::to_string(reference_points.rows()) + " (not the same topology)");
-      }
-      for (std::size_t k = 0; k < nodes.size(); ++k) {
-        trace.points[k] = Vec2(reference_points(nodes[k], 0), reference_points(nodes[k], 1));
+      for (std::size_t k = 0; k < wall.node.size(); ++k) {
+        const auto node = static_cast<Eigen::Index>(wall.node[k]);
+        trace.points[k] = Vec2(reference_points(node, 0), reference_points(node, 1));
       }
     }
     out.traces.push_back(std::move(trace));
@@ -221,19 +197,12 @@ void write_loads(const std::filesystem::path& file, const LoadsFile& loads,
 void write_walldisp(const std::filesystem::path& file, const formats::Header& header,
                     const std::string& wall_source, const std::vector<WallDisplacement>& walls,
                     const formats::Provenance& provenance) {
-  h5::Writer writer(file);
-  formats::write_header(writer, "walldisp", header);
-  writer.set_attr("/", "wall_source", wall_source);
-  for (const auto& wall : walls) {
-    const std::string g = "/walls/" + wall.name;
-    writer.write(g + "/x0", rows3(wall.points, false), "m", "undeformed wall point");
-    writer.write(g + "/displacement", rows3(wall.displacement, false), "m", "displacement");
-    if (!wall.nodes.empty()) writer.write(g + "/node", wall.nodes, "1", "flow mesh node of each point");
-    writer.set_attr(g, "flap", wall.flap);
-    writer.set_attr(g, "side", wall.side);
-  }
-  formats::write_provenance(writer, provenance);
-  writer.commit();
+  formats::WallDisplacements out;
+  out.header = header;
+  out.wall_source = wall_source;
+  for (const WallDisplacement& wall : walls)
+    out.walls.push_back({wall.name, wall.flap, wall.side, wall.nodes, wall.points, wall.displacement});
+  formats::write_walldisp(file, out, provenance);
 }
 
 }  // namespace tfmb::loads

@@ -7,6 +7,7 @@
 #include "tfmb/common/h5.hpp"
 #include "tfmb/formats/model.hpp"
 #include "tfmb/formats/schema.hpp"
+#include "tfmb/formats/thermal.hpp"
 
 namespace tfmb::matmap {
 
@@ -82,23 +83,9 @@ Model read_model(const std::filesystem::path& file) {
 }
 
 std::map<std::string, ThermalFlap> read_thermal(const std::filesystem::path& file) {
-  const h5::Reader reader = formats::open_checked(file, "thermal");
   std::map<std::string, ThermalFlap> out;
-  if (!reader.is_group("/beam")) reader.fail("/beam", "missing: no per beam element temperatures");
-  for (const std::string& name : reader.children("/beam")) {
-    const std::string g = "/beam/" + name;
-    ThermalFlap flap;
-    // read_vector refuses NaN and infinite values with the dataset's path.
-    flap.mean_temperature = reader.read_vector(g + "/mean_temperature");
-    flap.delta_temperature = reader.read_vector(g + "/delta_temperature", flap.mean_temperature.size());
-    for (std::size_t e = 0; e < flap.mean_temperature.size(); ++e) {
-      if (!(flap.mean_temperature[e] > 0.0)) {
-        reader.fail(g + "/mean_temperature", "element " + std::to_string(e) + ": " +
-                                                 std::to_string(flap.mean_temperature[e]) + " K is not a temperature");
-      }
-    }
-    out[name] = std::move(flap);
-  }
+  for (const formats::ThermalBeamFlap& flap : formats::read_thermal(file).beam)
+    out[flap.name] = {flap.mean_temperature, flap.delta_temperature};
   return out;
 }
 

@@ -15,6 +15,7 @@
 #include "tfmb/common/polyline.hpp"
 #include "tfmb/common/text.hpp"
 #include "tfmb/formats/schema.hpp"
+#include "tfmb/formats/walldisp.hpp"
 
 namespace tfmb::mesh {
 namespace {
@@ -337,27 +338,9 @@ BadInput inverted_cells_error(const Mesh& mesh, const Mesh& moved, const std::ve
 }  // namespace
 
 std::vector<WallDisplacement> read_walldisp(const std::filesystem::path& file) {
-  const h5::Reader r = formats::open_checked(file, "walldisp");
   std::vector<WallDisplacement> walls;
-  for (const auto& name : r.children("/walls")) {
-    WallDisplacement w;
-    w.boundary = name;
-    if (r.has_attr("/walls/" + name, "flap"))
-      w.flap = r.attr_string("/walls/" + name, "flap");
-    const auto x0 = r.read_matrix("/walls/" + name + "/x0", {}, 2);
-    const auto u = r.read_matrix("/walls/" + name + "/displacement", x0.rows(), 2);
-    if (x0.rows() < 1)
-      r.fail("/walls/" + name + "/x0", "no points");
-    for (Eigen::Index i = 0; i < x0.rows(); ++i) {
-      w.x0.emplace_back(x0(i, 0), x0(i, 1));
-      w.displacement.emplace_back(u(i, 0), u(i, 1));
-    }
-    if (r.exists("/walls/" + name + "/node")) {
-      w.nodes = r.read_index_vector("/walls/" + name + "/node", static_cast<std::size_t>(x0.rows()),
-                                    0, std::numeric_limits<std::int64_t>::max());
-    }
-    walls.push_back(std::move(w));
-  }
+  for (const formats::WallDisplacement& in : formats::read_walldisp(file).walls)
+    walls.push_back({in.name, in.flap, in.nodes, in.x0, in.displacement});
   return walls;
 }
 

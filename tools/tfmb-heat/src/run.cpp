@@ -5,6 +5,8 @@
 #include "tfmb/common/log.hpp"
 #include "tfmb/common/options.hpp"
 #include "tfmb/formats/files.hpp"
+#include "tfmb/formats/flow.hpp"
+#include "tfmb/formats/thermal.hpp"
 #include "tfmb/formats/model.hpp"
 #include "tfmb/formats/schema.hpp"
 #include "tfmb/heat/beam_outputs.hpp"
@@ -104,12 +106,20 @@ struct FlowWall {
 };
 
 // The trace dataset of a flow wall, or a BadInput naming what is missing and why it is needed.
-std::vector<double> trace_values(const h5::Reader& flow, const std::string& wall,
+std::vector<double> trace_values(const formats::Flow& flow, const std::string& wall,
                                  const std::string& dataset, const std::string& needed_by) {
   const std::string path = "/walls/" + wall + "/" + dataset;
-  if (!flow.exists(path))
-    flow.fail(path, "missing, needed by " + needed_by);
-  return flow.read_vector(path);
+  const formats::FlowWall* trace = flow.find_wall(wall);
+  const std::vector<double>* values = nullptr;
+  if (trace) {
+    if (dataset == "x") values = &trace->x;
+    if (dataset == "y") values = &trace->y;
+    if (dataset == "temperature") values = &trace->temperature;
+    if (dataset == "heat_transfer_coefficient") values = &trace->heat_transfer_coefficient;
+    if (dataset == "adiabatic_wall_temperature") values = &trace->adiabatic_wall_temperature;
+  }
+  if (!values || values->empty()) flow.fail(path, "missing, needed by " + needed_by);
+  return *values;
 }
 
 // --- inputs --------------------------------------------------------------------------------------
@@ -188,16 +198,13 @@ void assign_materials(const Options& options, const formats::Model& model, Solid
 }
 
 // The walls of flow.h5 that carry traces, with the flap and side their mesh boundary names.
-std::vector<FlowWall> traced_flow_walls(const h5::Reader& flow) {
-  const auto flow_mesh = formats::read_mesh(flow);
+std::vector<FlowWall> traced_flow_walls(const formats::Flow& flow) {
   std::vector<FlowWall> flow_walls;
-  if (!flow.exists("/walls"))
-    return flow_walls;
-  for (const auto& name : flow.children("/walls")) {
-    const auto it = flow_mesh.boundaries.find(name);
-    if (it == flow_mesh.boundaries.end())
+  for (const formats::FlowWall& wall : flow.walls) {
+    const auto it = flow.mesh.boundaries.find(wall.name);
+    if (it == flow.mesh.boundaries.end())
       continue;
-    flow_walls.push_back({name, it->second.flap, it->second.side});
+    flow_walls.push_back({wall.name, it->second.flap, it->second.side});
   }
   return flow_walls;
 }
@@ -209,7 +216,7 @@ struct WallConditionInputs {
   const Options& options;
   const formats::ThermalSettings& thermal;
   const SolidMesh& mesh;
-  const h5::Reader& flow;
+  const formats::Flow& flow;
   std::string needed_by;  // the model setting that asks for the traces, for error messages
 };
 
@@ -352,7 +359,7 @@ void joint_contacts(const Options& options, const formats::Model& model, const S
 
 // Newton starts from the mean temperature of the flow traces the walls took; a solid mesh no
 // trace reaches is an error.
-double initial_temperature(const std::vector<double>& trace_temperatures, const h5::Reader& flow,
+double initial_temperature(const std::vector<double>& trace_temperatures, const formats::Flow& flow,
                            const Options& options) {
   if (trace_temperatures.empty()) {
     flow.fail("/walls",
@@ -444,49 +451,31 @@ void write_thermal(const Options& options, const formats::ThermalSettings& therm
                    const SolidInput& solid, const SteadyResult& result,
                    const Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>& flux,
                    const BeamElementTemperatures& beam) {
-  {
-    h5::Writer out(options.output);
-    formats::Header out_header;
-    out_header.creator = "tfmb-heat " + std::string(TFMB_HEAT_VERSION);
-    out_header.geometry = solid.header.geometry;
-    out_header.depth = solid.header.depth;
-    formats::write_header(out, "thermal", out_header);
-    formats::write_mesh(out, solid.mesh_in);
-    const auto& temperature = result.temperature;
-    out.write("/fields/point/temperature",
-              std::vector<double>(temperature.data(), temperature.data() + temperature.size()), "K",
-              "nodal temperature");
-    h5::MatrixXdR flux3 = h5::MatrixXdR::Zero(flux.rows(), 3);
-    flux3.leftCols(2) = flux;
-    out.write("/fields/point/heat_flux", flux3, "W/m^2",
-              "q = -k grad T, area-weighted nodal average");
-    for (std::size_t f = 0; f < solid.flap_names.size(); ++f) {
-      const std::string group = "/beam/" + solid.flap_names[f];
-      const std::int64_t begin = beam.offsets[f], end = beam.offsets[f + 1];
-      out.write(group + "/mean_temperature", slice(beam.outputs.mean_temperature, begin, end), "K",
-                "area mean per beam element");
-      out.write(group + "/delta_temperature",
-                slice(beam.outputs.temperature_difference, begin, end), "K",
-                "outer minus inner surface temperature of the linear fit through the thickness");
-    }
-    out.create_group("/convergence");
-    out.set_attr("/convergence", "converged",
-                 static_cast<std::int64_t>(result.newton.converged ? 1 : 0));
-    out.set_attr("/convergence", "iterations", static_cast<std::int64_t>(result.newton.iterations));
-    out.set_attr("/convergence", "criterion",
-                 "largest Newton temperature update below " +
-                     std::to_string(options.newton.temperature_tolerance) + " K");
-    formats::Provenance provenance;
-    provenance.command_line = options.command_line;
-    // Every option as given (declared once in main.cpp), then what the model resolved.
-    provenance.settings = options.settings_toml + "\n[resolved]\nsolid_boundary = " +
-                          cli::toml_string(thermal.solid_boundary) +
-                          "\nemissivity = " + cli::toml_float(thermal.emissivity) + "\n";
-    provenance.inputs = {options.solid_mesh, options.flow, options.model, options.material_db};
-    formats::write_provenance(out, provenance);
-    out.commit();
+  formats::Thermal out;
+  out.header.creator = "tfmb-heat " + std::string(TFMB_HEAT_VERSION);
+  out.header.geometry = solid.header.geometry;
+  out.header.depth = solid.header.depth;
+  out.mesh = solid.mesh_in;
+  out.temperature.assign(result.temperature.data(), result.temperature.data() + result.temperature.size());
+  out.heat_flux = h5::MatrixXdR::Zero(flux.rows(), 3);
+  out.heat_flux.leftCols(2) = flux;
+  for (std::size_t f = 0; f < solid.flap_names.size(); ++f) {
+    const std::int64_t begin = beam.offsets[f], end = beam.offsets[f + 1];
+    out.beam.push_back({solid.flap_names[f], slice(beam.outputs.mean_temperature, begin, end),
+                        slice(beam.outputs.temperature_difference, begin, end)});
   }
-  formats::write_xdmf_sidecar(options.output);
+  out.converged = result.newton.converged;
+  out.iterations = result.newton.iterations;
+  out.criterion = "largest Newton temperature update below " +
+                  std::to_string(options.newton.temperature_tolerance) + " K";
+  formats::Provenance provenance;
+  provenance.command_line = options.command_line;
+  // Every option as given (declared once in main.cpp), then what the model resolved.
+  provenance.settings = options.settings_toml + "\n[resolved]\nsolid_boundary = " +
+                        cli::toml_string(thermal.solid_boundary) + "\nemissivity = " +
+                        cli::toml_float(thermal.emissivity) + "\n";
+  provenance.inputs = {options.solid_mesh, options.flow, options.model, options.material_db};
+  formats::write_thermal(options.output, out, provenance);
 }
 
 // The summary line; a result Newton did not converge to is written (flagged) and then reported
@@ -517,7 +506,7 @@ int run(const Options& options, const Logger& log) {
   ThermalProblem problem;
   problem.mesh = &solid.mesh;
   assign_materials(options, model, solid, problem);
-  const auto flow = formats::open_checked(options.flow, "flow");
+  const formats::Flow flow = formats::read_flow(options.flow);
   const std::vector<FlowWall> flow_walls = traced_flow_walls(flow);
 
   // Flow and solid walls are discretised differently: allow half a solid edge at the wall ends.
