@@ -104,8 +104,9 @@ Mesh read_mesh(const h5::Reader& file) {
     }
   }
   // The schema makes boundaries optional (a mesh of one region may have none named).
-  const std::vector<std::string> boundary_names =
-      file.is_group("/mesh/boundaries") ? file.children("/mesh/boundaries") : std::vector<std::string>{};
+  const std::vector<std::string> boundary_names = file.is_group("/mesh/boundaries")
+                                                      ? file.children("/mesh/boundaries")
+                                                      : std::vector<std::string>{};
   for (const auto& name : boundary_names) {
     const std::string group = "/mesh/boundaries/" + name;
     Boundary boundary;

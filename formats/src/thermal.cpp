@@ -9,7 +9,8 @@ namespace tfmb::formats {
 
 const ThermalBeamFlap* Thermal::find_flap(const std::string& name) const {
   for (const ThermalBeamFlap& f : beam)
-    if (f.name == name) return &f;
+    if (f.name == name)
+      return &f;
   return nullptr;
 }
 
@@ -17,13 +18,15 @@ void Thermal::fail(const std::string& object_path, const std::string& what) cons
   throw BadInput(source.string() + ": " + object_path + ": " + what);
 }
 
-void write_thermal(const std::filesystem::path& file, const Thermal& thermal, const Provenance& provenance) {
+void write_thermal(const std::filesystem::path& file, const Thermal& thermal,
+                   const Provenance& provenance) {
   h5::Writer w(file);
   write_header(w, "thermal", thermal.header);
   write_mesh(w, thermal.mesh);
   w.write("/fields/point/temperature", thermal.temperature, "K", "nodal temperature");
   if (thermal.heat_flux.rows() > 0)
-    w.write("/fields/point/heat_flux", thermal.heat_flux, "W/m^2", "q = -k grad T, area-weighted nodal average");
+    w.write("/fields/point/heat_flux", thermal.heat_flux, "W/m^2",
+            "q = -k grad T, area-weighted nodal average");
   for (const ThermalBeamFlap& f : thermal.beam) {
     const std::string g = "/beam/" + f.name;
     w.write(g + "/mean_temperature", f.mean_temperature, "K", "area mean per beam element");
@@ -49,7 +52,8 @@ Thermal read_thermal(const std::filesystem::path& file) {
   t.temperature = r.read_vector("/fields/point/temperature", n);
   if (r.exists("/fields/point/heat_flux"))
     t.heat_flux = r.read_matrix("/fields/point/heat_flux", static_cast<Eigen::Index>(n), 3);
-  if (!r.is_group("/beam")) r.fail("/beam", "missing: no per beam element temperatures");
+  if (!r.is_group("/beam"))
+    r.fail("/beam", "missing: no per beam element temperatures");
   for (const std::string& name : r.children("/beam")) {
     const std::string g = "/beam/" + name;
     ThermalBeamFlap f;
@@ -58,7 +62,8 @@ Thermal read_thermal(const std::filesystem::path& file) {
     f.delta_temperature = r.read_vector(g + "/delta_temperature", f.mean_temperature.size());
     for (std::size_t e = 0; e < f.mean_temperature.size(); ++e) {
       if (!(f.mean_temperature[e] > 0.0))
-        r.fail(g + "/mean_temperature", "element " + std::to_string(e) + ": " + std::to_string(f.mean_temperature[e]) +
+        r.fail(g + "/mean_temperature", "element " + std::to_string(e) + ": " +
+                                            std::to_string(f.mean_temperature[e]) +
                                             " K is not a temperature");
     }
     t.beam.push_back(std::move(f));
@@ -67,9 +72,12 @@ Thermal read_thermal(const std::filesystem::path& file) {
     if (!(t.temperature[k] > 0.0))
       r.fail("/fields/point/temperature", "node " + std::to_string(k) + ": not a temperature");
   // The convergence record is optional (an external solver may not have one).
-  if (r.has_attr("/convergence", "converged")) t.converged = r.attr_i64("/convergence", "converged") == 1;
-  if (r.has_attr("/convergence", "iterations")) t.iterations = r.attr_i64("/convergence", "iterations");
-  if (r.has_attr("/convergence", "criterion")) t.criterion = r.attr_string("/convergence", "criterion");
+  if (r.has_attr("/convergence", "converged"))
+    t.converged = r.attr_i64("/convergence", "converged") == 1;
+  if (r.has_attr("/convergence", "iterations"))
+    t.iterations = r.attr_i64("/convergence", "iterations");
+  if (r.has_attr("/convergence", "criterion"))
+    t.criterion = r.attr_string("/convergence", "criterion");
   return t;
 }
 

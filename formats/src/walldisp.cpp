@@ -12,13 +12,15 @@ namespace {
 
 h5::MatrixXdR rows(const std::vector<Eigen::Vector2d>& v) {
   h5::MatrixXdR m(static_cast<Eigen::Index>(v.size()), 2);
-  for (std::size_t i = 0; i < v.size(); ++i) m.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
+  for (std::size_t i = 0; i < v.size(); ++i)
+    m.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
   return m;
 }
 
 }  // namespace
 
-void write_walldisp(const std::filesystem::path& file, const WallDisplacements& walls, const Provenance& provenance) {
+void write_walldisp(const std::filesystem::path& file, const WallDisplacements& walls,
+                    const Provenance& provenance) {
   h5::Writer w(file);
   write_header(w, "walldisp", walls.header);
   w.set_attr("/", "wall_source", walls.wall_source);
@@ -26,7 +28,8 @@ void write_walldisp(const std::filesystem::path& file, const WallDisplacements& 
     const std::string g = "/walls/" + wall.name;
     w.write(g + "/x0", rows(wall.x0), "m", "undeformed wall point");
     w.write(g + "/displacement", rows(wall.displacement), "m", "displacement");
-    if (!wall.nodes.empty()) w.write(g + "/node", wall.nodes, "1", "flow mesh node of each point");
+    if (!wall.nodes.empty())
+      w.write(g + "/node", wall.nodes, "1", "flow mesh node of each point");
     w.set_attr(g, "flap", wall.flap);
     w.set_attr(g, "side", wall.side);
   }
@@ -47,7 +50,8 @@ WallDisplacements read_walldisp(const std::filesystem::path& file) {
     wall.flap = r.attr_string(g, "flap");
     wall.side = r.attr_string(g, "side");
     const h5::MatrixXdR x0 = r.read_matrix(g + "/x0", {}, 2);
-    if (x0.rows() < 1) r.fail(g + "/x0", "no points");
+    if (x0.rows() < 1)
+      r.fail(g + "/x0", "no points");
     const h5::MatrixXdR u = r.read_matrix(g + "/displacement", x0.rows(), 2);
     for (Eigen::Index i = 0; i < x0.rows(); ++i) {
       wall.x0.emplace_back(x0(i, 0), x0(i, 1));

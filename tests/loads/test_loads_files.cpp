@@ -277,7 +277,8 @@ TEST(LoadsFiles, TheWallNormalsSayWhereTheFluidIs) {
         files.flow,
         {tf::make_trace("in", flap.name, "inner", flap.inner_wall, p, zero, fluid_side),
          tf::make_trace("out", flap.name, "outer", flap.outer_wall, ambient, zero, -fluid_side),
-         tf::make_trace("lower_in", "lower", "inner", files.flaps[1].inner_wall, ambient, zero, 1.0),
+         tf::make_trace("lower_in", "lower", "inner", files.flaps[1].inner_wall, ambient, zero,
+                        1.0),
          tf::make_trace("lower_out", "lower", "outer", files.flaps[1].outer_wall, ambient, zero,
                         -1.0)});
     const auto out = files.dir / "loads.h5";

@@ -29,11 +29,13 @@ Side parse_side(const formats::Flow& file, const std::string& object, const std:
 // Which side of a trace the fluid is on, from the flow file's wall normals (flow 1.4: unit
 // normals leaving the fluid): the sign that turns the segments' left normals out of the solid,
 // i.e. against the flow's normals, by a length-weighted vote over the segments.
-double fluid_side(const formats::Flow& flow, const formats::FlowWall& wall, const WallTrace& trace) {
+double fluid_side(const formats::Flow& flow, const formats::FlowWall& wall,
+                  const WallTrace& trace) {
   const std::string group = "/walls/" + wall.name;
   if (wall.normal.empty()) {
-    flow.fail(group, "no /normal: tfmb-loads needs each flap wall's normal (flow 1.4) to know which side "
-                     "the fluid is on; re-run tfmb-flow, or have the external flow code write it");
+    flow.fail(group,
+              "no /normal: tfmb-loads needs each flap wall's normal (flow 1.4) to know which side "
+              "the fluid is on; re-run tfmb-flow, or have the external flow code write it");
   }
   double vote = 0.0;
   for (std::size_t k = 0; k < trace.segment_count(); ++k) {
@@ -41,7 +43,8 @@ double fluid_side(const formats::Flow& flow, const formats::FlowWall& wall, cons
     const Vec2 e = trace.points[k + 1] - trace.points[k];
     vote -= Vec2(-e.y(), e.x()).dot(into_wall);  // left normal against the flow's normal
   }
-  if (vote == 0.0) flow.fail(group + "/normal", "cannot tell on which side of the wall the fluid is");
+  if (vote == 0.0)
+    flow.fail(group + "/normal", "cannot tell on which side of the wall the fluid is");
   return vote > 0.0 ? 1.0 : -1.0;
 }
 
@@ -68,8 +71,9 @@ FlowTraces read_flow_traces(const std::filesystem::path& file,
   if (!reference_mesh.empty()) {
     reference_points = formats::read_mesh(formats::open_checked(reference_mesh, "flowmesh")).points;
     if (static_cast<std::size_t>(reference_points.rows()) != flow.mesh.node_count()) {
-      flow.fail("/mesh/points", std::to_string(flow.mesh.node_count()) + " nodes, but the reference mesh " +
-                                    reference_mesh.string() + " has " + std::to_string(reference_points.rows()) +
+      flow.fail("/mesh/points", std::to_string(flow.mesh.node_count()) +
+                                    " nodes, but the reference mesh " + reference_mesh.string() +
+                                    " has " + std::to_string(reference_points.rows()) +
                                     " (not the same topology)");
     }
   }
@@ -86,11 +90,13 @@ FlowTraces read_flow_traces(const std::filesystem::path& file,
     WallTrace trace;
     trace.name = wall.name;
     trace.flap = boundary->second.flap;
-    if (boundary->second.side.empty()) flow.fail(b, "a flap wall needs a 'side' attribute (inner, outer or end)");
+    if (boundary->second.side.empty())
+      flow.fail(b, "a flap wall needs a 'side' attribute (inner, outer or end)");
     trace.side = parse_side(flow, b, boundary->second.side);
     trace.pressure = wall.pressure;
     trace.wall_shear = wall.wall_shear;
-    for (std::size_t i = 0; i < wall.x.size(); ++i) trace.points.emplace_back(wall.x[i], wall.y[i]);
+    for (std::size_t i = 0; i < wall.x.size(); ++i)
+      trace.points.emplace_back(wall.x[i], wall.y[i]);
     try {
       check_trace(trace);
     } catch (const std::invalid_argument& e) {
@@ -201,7 +207,8 @@ void write_walldisp(const std::filesystem::path& file, const formats::Header& he
   out.header = header;
   out.wall_source = wall_source;
   for (const WallDisplacement& wall : walls)
-    out.walls.push_back({wall.name, wall.flap, wall.side, wall.nodes, wall.points, wall.displacement});
+    out.walls.push_back(
+        {wall.name, wall.flap, wall.side, wall.nodes, wall.points, wall.displacement});
   formats::write_walldisp(file, out, provenance);
 }
 

@@ -6,9 +6,9 @@
 #include "tfmb/common/options.hpp"
 #include "tfmb/formats/files.hpp"
 #include "tfmb/formats/flow.hpp"
-#include "tfmb/formats/thermal.hpp"
 #include "tfmb/formats/model.hpp"
 #include "tfmb/formats/schema.hpp"
+#include "tfmb/formats/thermal.hpp"
 #include "tfmb/heat/beam_outputs.hpp"
 #include "tfmb/heat/boundary_geometry.hpp"
 #include "tfmb/heat/heat_flux.hpp"
@@ -112,13 +112,19 @@ std::vector<double> trace_values(const formats::Flow& flow, const std::string& w
   const formats::FlowWall* trace = flow.find_wall(wall);
   const std::vector<double>* values = nullptr;
   if (trace) {
-    if (dataset == "x") values = &trace->x;
-    if (dataset == "y") values = &trace->y;
-    if (dataset == "temperature") values = &trace->temperature;
-    if (dataset == "heat_transfer_coefficient") values = &trace->heat_transfer_coefficient;
-    if (dataset == "adiabatic_wall_temperature") values = &trace->adiabatic_wall_temperature;
+    if (dataset == "x")
+      values = &trace->x;
+    if (dataset == "y")
+      values = &trace->y;
+    if (dataset == "temperature")
+      values = &trace->temperature;
+    if (dataset == "heat_transfer_coefficient")
+      values = &trace->heat_transfer_coefficient;
+    if (dataset == "adiabatic_wall_temperature")
+      values = &trace->adiabatic_wall_temperature;
   }
-  if (!values || values->empty()) flow.fail(path, "missing, needed by " + needed_by);
+  if (!values || values->empty())
+    flow.fail(path, "missing, needed by " + needed_by);
   return *values;
 }
 
@@ -456,7 +462,8 @@ void write_thermal(const Options& options, const formats::ThermalSettings& therm
   out.header.geometry = solid.header.geometry;
   out.header.depth = solid.header.depth;
   out.mesh = solid.mesh_in;
-  out.temperature.assign(result.temperature.data(), result.temperature.data() + result.temperature.size());
+  out.temperature.assign(result.temperature.data(),
+                         result.temperature.data() + result.temperature.size());
   out.heat_flux = h5::MatrixXdR::Zero(flux.rows(), 3);
   out.heat_flux.leftCols(2) = flux;
   for (std::size_t f = 0; f < solid.flap_names.size(); ++f) {
@@ -472,8 +479,8 @@ void write_thermal(const Options& options, const formats::ThermalSettings& therm
   provenance.command_line = options.command_line;
   // Every option as given (declared once in main.cpp), then what the model resolved.
   provenance.settings = options.settings_toml + "\n[resolved]\nsolid_boundary = " +
-                        cli::toml_string(thermal.solid_boundary) + "\nemissivity = " +
-                        cli::toml_float(thermal.emissivity) + "\n";
+                        cli::toml_string(thermal.solid_boundary) +
+                        "\nemissivity = " + cli::toml_float(thermal.emissivity) + "\n";
   provenance.inputs = {options.solid_mesh, options.flow, options.model, options.material_db};
   formats::write_thermal(options.output, out, provenance);
 }

@@ -20,9 +20,9 @@ struct ThermalBeamFlap {
 struct Thermal {
   std::filesystem::path source;  // the file it was read from
   Header header;
-  Mesh mesh;                        // the solid mesh
-  std::vector<double> temperature;  // [K] per node
-  h5::MatrixXdR heat_flux;          // (N,3) [W/m^2] q = -k grad T, or empty
+  Mesh mesh;                          // the solid mesh
+  std::vector<double> temperature;    // [K] per node
+  h5::MatrixXdR heat_flux;            // (N,3) [W/m^2] q = -k grad T, or empty
   std::vector<ThermalBeamFlap> beam;  // by flap name
   bool converged = false;
   std::int64_t iterations = 0;
@@ -34,7 +34,8 @@ struct Thermal {
 };
 
 // Writes thermal.h5 atomically and its XDMF sidecar.
-void write_thermal(const std::filesystem::path& file, const Thermal& thermal, const Provenance& provenance);
+void write_thermal(const std::filesystem::path& file, const Thermal& thermal,
+                   const Provenance& provenance);
 // Reads and validates a thermal file (BadInput naming the file and the object on any problem).
 Thermal read_thermal(const std::filesystem::path& file);
 

@@ -25,12 +25,13 @@ struct WallDisplacement {
 struct WallDisplacements {
   std::filesystem::path source;  // the file it was read from
   Header header;
-  std::string wall_source;  // where the points come from (model walls or a flow mesh)
+  std::string wall_source;              // where the points come from (model walls or a flow mesh)
   std::vector<WallDisplacement> walls;  // by name
 };
 
 // Writes walldisp.h5 atomically.
-void write_walldisp(const std::filesystem::path& file, const WallDisplacements& walls, const Provenance& provenance);
+void write_walldisp(const std::filesystem::path& file, const WallDisplacements& walls,
+                    const Provenance& provenance);
 // Reads and validates a walldisp file (BadInput naming the file and the object on any problem).
 WallDisplacements read_walldisp(const std::filesystem::path& file);
 
