@@ -6,11 +6,11 @@
 #include <cstdlib>
 
 #include "refdata.hpp"
-#include "tfmb/beam/assembly.hpp"
-#include "tfmb/beam/cases.hpp"
-#include "tfmb/beam/dynamic_solver.hpp"
-#include "tfmb/beam/modal.hpp"
-#include "tfmb/beam/static_solver.hpp"
+#include "tfmb-beam/assembly.hpp"
+#include "tfmb-beam/cases.hpp"
+#include "tfmb-beam/dynamic_solver.hpp"
+#include "tfmb-beam/modal.hpp"
+#include "tfmb-beam/static_solver.hpp"
 
 using namespace tfmb::beam;
 

@@ -4,9 +4,9 @@
 
 #include <random>
 
-#include "tfmb/beam/assembly.hpp"
-#include "tfmb/beam/beam_element.hpp"
-#include "tfmb/beam/rotation_wm.hpp"
+#include "tfmb-beam/assembly.hpp"
+#include "tfmb-beam/beam_element.hpp"
+#include "tfmb-beam/rotation_wm.hpp"
 
 using namespace tfmb::beam;
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <iostream>
 
-#include "tfmb/beam/flexible_joint.hpp"
+#include "tfmb-beam/flexible_joint.hpp"
 
 using namespace tfmb::beam;
 

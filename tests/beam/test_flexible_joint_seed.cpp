@@ -6,7 +6,7 @@
 
 #include <iostream>
 
-#include "tfmb/beam/flexible_joint_seed.hpp"
+#include "tfmb-beam/flexible_joint_seed.hpp"
 
 using namespace tfmb::beam;
 

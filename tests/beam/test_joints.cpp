@@ -4,10 +4,10 @@
 
 #include <cmath>
 
-#include "tfmb/beam/assembly.hpp"
-#include "tfmb/beam/cases.hpp"
-#include "tfmb/beam/errors.hpp"
-#include "tfmb/beam/static_solver.hpp"
+#include "tfmb-beam/assembly.hpp"
+#include "tfmb-beam/cases.hpp"
+#include "tfmb-beam/errors.hpp"
+#include "tfmb-beam/static_solver.hpp"
 
 using namespace tfmb::beam;
 

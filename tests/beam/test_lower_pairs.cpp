@@ -9,11 +9,11 @@
 #include <iostream>
 
 #include "refdata.hpp"
-#include "tfmb/beam/assembly.hpp"
-#include "tfmb/beam/cases.hpp"
-#include "tfmb/beam/dynamic_solver.hpp"
-#include "tfmb/beam/flexible_joint.hpp"
-#include "tfmb/beam/static_solver.hpp"
+#include "tfmb-beam/assembly.hpp"
+#include "tfmb-beam/cases.hpp"
+#include "tfmb-beam/dynamic_solver.hpp"
+#include "tfmb-beam/flexible_joint.hpp"
+#include "tfmb-beam/static_solver.hpp"
 
 using namespace tfmb::beam;
 

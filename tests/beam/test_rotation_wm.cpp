@@ -5,7 +5,7 @@
 #include <Eigen/Geometry>
 #include <random>
 
-#include "tfmb/beam/rotation_wm.hpp"
+#include "tfmb-beam/rotation_wm.hpp"
 
 using namespace tfmb::beam;
 

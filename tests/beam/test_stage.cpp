@@ -7,7 +7,7 @@
 #include <iostream>
 #include <fstream>
 
-#include "tfmb/beam/run.hpp"
+#include "tfmb-beam/run.hpp"
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
 #include "tfmb/formats/files.hpp"

@@ -6,10 +6,10 @@
 #include <limits>
 
 #include "refdata.hpp"
-#include "tfmb/beam/assembly.hpp"
-#include "tfmb/beam/cases.hpp"
-#include "tfmb/beam/rotation_wm.hpp"
-#include "tfmb/beam/static_solver.hpp"
+#include "tfmb-beam/assembly.hpp"
+#include "tfmb-beam/cases.hpp"
+#include "tfmb-beam/rotation_wm.hpp"
+#include "tfmb-beam/static_solver.hpp"
 
 using namespace tfmb::beam;
 

@@ -1,8 +1,8 @@
 #pragma once
 // Shared helpers for the tfmb-heat tests: meshes, materials and traces sampled from a field.
-#include "tfmb/heat/boundary_geometry.hpp"
-#include "tfmb/heat/strip_mesh.hpp"
-#include "tfmb/heat/trace.hpp"
+#include "tfmb-heat/boundary_geometry.hpp"
+#include "tfmb-heat/strip_mesh.hpp"
+#include "tfmb-heat/trace.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,10 +1,10 @@
 // Unit tests of assembly-level behaviour: patch test on distorted mixed meshes, the consistent
 // tangent against finite differences, contact, per-beam outputs and bad-input messages.
 #include "heat_test_support.hpp"
-#include "tfmb/heat/assembly.hpp"
-#include "tfmb/heat/beam_outputs.hpp"
-#include "tfmb/heat/heat_flux.hpp"
-#include "tfmb/heat/steady_solver.hpp"
+#include "tfmb-heat/assembly.hpp"
+#include "tfmb-heat/beam_outputs.hpp"
+#include "tfmb-heat/heat_flux.hpp"
+#include "tfmb-heat/steady_solver.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,11 +1,11 @@
 // Unit tests of the small building blocks: shape functions, quadrature, property tables,
 // wall traces and arc length.
 #include "heat_test_support.hpp"
-#include "tfmb/heat/boundary_geometry.hpp"
-#include "tfmb/heat/property_table.hpp"
-#include "tfmb/heat/quadrature.hpp"
-#include "tfmb/heat/shape_functions.hpp"
-#include "tfmb/heat/trace.hpp"
+#include "tfmb-heat/boundary_geometry.hpp"
+#include "tfmb-heat/property_table.hpp"
+#include "tfmb-heat/quadrature.hpp"
+#include "tfmb-heat/shape_functions.hpp"
+#include "tfmb-heat/trace.hpp"
 
 #include <gtest/gtest.h>
 
@@ -180,7 +180,7 @@ TEST(HeatBoundaryGeometry, ArcLengthAlongStripSidesAndReversedEdges) {
   }
 }
 
-#include "tfmb/heat/wall_mapping.hpp"
+#include "tfmb-heat/wall_mapping.hpp"
 
 TEST(HeatWallMapping, TraceIsReexpressedInTheSolidArcLength) {
   StripMeshOptions o;

@@ -6,9 +6,9 @@
 #include "tfmb/common/log.hpp"
 #include "tfmb/formats/files.hpp"
 #include "tfmb/formats/schema.hpp"
-#include "tfmb/heat/boundary_terms.hpp"
-#include "tfmb/heat/run.hpp"
-#include "tfmb/heat/strip_mesh.hpp"
+#include "tfmb-heat/boundary_terms.hpp"
+#include "tfmb-heat/run.hpp"
+#include "tfmb-heat/strip_mesh.hpp"
 
 #include <gtest/gtest.h>
 

@@ -5,11 +5,11 @@
 //     (quadratic elements) over three meshes;
 //  4. transient slab cooled by convection at one face against the Fourier series, within 1 %.
 #include "heat_test_support.hpp"
-#include "tfmb/heat/assembly.hpp"
-#include "tfmb/heat/boundary_terms.hpp"
-#include "tfmb/heat/heat_flux.hpp"
-#include "tfmb/heat/steady_solver.hpp"
-#include "tfmb/heat/transient_solver.hpp"
+#include "tfmb-heat/assembly.hpp"
+#include "tfmb-heat/boundary_terms.hpp"
+#include "tfmb-heat/heat_flux.hpp"
+#include "tfmb-heat/steady_solver.hpp"
+#include "tfmb-heat/transient_solver.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Run every tool's documented sample command lines, so that they keep working.
 
-Each tool's main.cpp (tools/<tool>/main.cpp, tools/<tool>/src/main.cpp) opens with a comment whose
+Each tool's main.cpp (tools/<tool>/main.cpp) opens with a comment whose
 "Sample runs:" section lists example command lines; a line indented deeper than the commands
 continues the one above. A note after a command, `# ...` or a parenthesised `(...)` set off by two
 or more spaces, is prose, with two exceptions the runner reads:
@@ -140,7 +140,7 @@ def output_files(tokens):
 
 def main_sources(src):
     tools = src / "tools"
-    return sorted(list(tools.glob("*/main.cpp")) + list(tools.glob("*/src/main.cpp")))
+    return sorted(tools.glob("*/main.cpp"))
 
 
 # --------------------------------------------------------------------------------------------

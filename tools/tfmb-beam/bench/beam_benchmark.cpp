@@ -15,9 +15,9 @@
 #include <sstream>
 #include <string>
 
-#include "tfmb/beam/assembly.hpp"
-#include "tfmb/beam/cases.hpp"
-#include "tfmb/beam/static_solver.hpp"
+#include "tfmb-beam/assembly.hpp"
+#include "tfmb-beam/cases.hpp"
+#include "tfmb-beam/static_solver.hpp"
 
 using namespace tfmb::beam;
 using Clock = std::chrono::steady_clock;

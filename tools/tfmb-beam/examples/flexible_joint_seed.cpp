@@ -14,10 +14,10 @@
 #include <iomanip>
 #include <iostream>
 
-#include "tfmb/beam/assembly.hpp"
-#include "tfmb/beam/cases.hpp"
-#include "tfmb/beam/flexible_joint_seed.hpp"
-#include "tfmb/beam/static_solver.hpp"
+#include "tfmb-beam/assembly.hpp"
+#include "tfmb-beam/cases.hpp"
+#include "tfmb-beam/flexible_joint_seed.hpp"
+#include "tfmb-beam/static_solver.hpp"
 
 using namespace tfmb::beam;
 

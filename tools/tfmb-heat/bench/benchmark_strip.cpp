@@ -13,9 +13,9 @@
 // inner face convection with h(s) = 600..1000 W/(m^2 K), T_aw(s) = 1400..1000 K; outer face
 // convection 20 W/(m^2 K) to 300 K plus radiation (emissivity 0.8, 300 K); end x = 0 held at
 // 600 K; end x = 1 m adiabatic.
-#include "tfmb/heat/calculix_export.hpp"
-#include "tfmb/heat/steady_solver.hpp"
-#include "tfmb/heat/strip_mesh.hpp"
+#include "tfmb-heat/calculix_export.hpp"
+#include "tfmb-heat/steady_solver.hpp"
+#include "tfmb-heat/strip_mesh.hpp"
 
 #include <CLI/CLI.hpp>
 

@@ -1,0 +1,259 @@
+#include "tfmb-beam/static_solver.hpp"
+
+#include <algorithm>
+#include <functional>
+#include <cmath>
+#include <limits>
+
+#include "tfmb-beam/errors.hpp"
+#include "tfmb-beam/linear_solver.hpp"
+#include "tfmb-beam/rotation_wm.hpp"
+
+namespace tfmb::beam {
+
+bool newton_static(const Assembly& assembly, State& state, double load_factor, const StaticOptions& options,
+                   int& iterations) {
+  NewtonLinearSolver solver([&](int i) { return assembly.dof_name(i); });
+  Eigen::VectorXd r;
+  Triplets k;
+  double scale = 0.0;
+  const State start = state;
+  const int nq = assembly.num_node_dofs() + assembly.num_joint_dofs();
+  Eigen::VectorXd accumulated = Eigen::VectorXd::Zero(nq);
+  for (int it = 0; it < options.max_iterations; ++it) {
+    assembly.assemble(state, load_factor, r, &k, &scale);
+    ++iterations;
+    if (!r.allFinite()) break;
+    if (r.norm() <= options.tolerance * std::max(scale, 1e-300) && it > 0) return true;
+    Eigen::VectorXd dx;
+    try {
+      dx = solver.solve(assembly.size(), k, r, assembly.step_limit());
+    } catch (const ModelError&) {
+      // Singular at the start of a step: the model itself is singular (mechanism). Singular
+      // after a few iterations: Newton wandered off; cut the step back.
+      if (it == 0) throw;
+      break;
+    }
+    // Damped Newton: a correction that turns a node by more than max_rotation_increment is
+    // scaled down (the first iterate of a large load step overshoots badly in rotation).
+    double max_rot = 0.0;
+    for (int i = 0; i < assembly.num_nodes(); ++i) max_rot = std::max(max_rot, dx.segment<3>(6 * i + 3).norm());
+    if (max_rot > options.max_rotation_increment) dx *= options.max_rotation_increment / max_rot;
+    assembly.apply_increment(state, dx);
+    accumulated += dx.head(nq);
+    // Increment criterion: with quadratic convergence a correction 1e-10 times the step's total
+    // increment means the residual is at round-off, which for stiff constraints (s Phi ~ s eps)
+    // can exceed a force-relative residual tolerance.
+    // Floor: corrections below the round-off of the coordinates themselves.
+    double xmax = 1.0;
+    for (const auto& x : state.position) xmax = std::max(xmax, x.cwiseAbs().maxCoeff());
+    const double floor = 64.0 * std::numeric_limits<double>::epsilon() * xmax * std::sqrt(static_cast<double>(nq));
+    if (it > 0 && dx.head(nq).norm() <= options.increment_tolerance * accumulated.norm() + floor) return true;
+  }
+  state = start;
+  return false;
+}
+
+namespace {
+
+/// The change from `a` to `b` as an increment vector (spatial rotation parameters).
+Eigen::VectorXd difference(const Assembly& assembly, const State& a, const State& b) {
+  Eigen::VectorXd d(assembly.size());
+  const int nn = assembly.num_nodes();
+  for (int i = 0; i < nn; ++i) {
+    d.segment<3>(6 * i) = b.position[i] - a.position[i];
+    d.segment<3>(6 * i + 3) = wm_compose<double>(b.rotation[i], wm_inverse<double>(a.rotation[i]));
+  }
+  d.segment(6 * nn, assembly.num_joint_dofs()) = b.joint_dofs - a.joint_dofs;
+  d.tail(assembly.num_multipliers()) = b.multipliers - a.multipliers;
+  return d;
+}
+
+}  // namespace
+
+StaticResult solve_static(const Assembly& assembly, const State& initial, const StaticOptions& options) {
+  StaticResult res;
+  res.state = initial;
+  double step = options.final_load_factor / std::max(options.initial_steps, 1);
+  double lf = 0.0;
+  int cut = 0;
+  int easy = 0;
+  // Secant predictor: the last converged step's change, scaled to the new step length. It starts
+  // Newton near the solution path instead of at the (overshooting) linear response.
+  Eigen::VectorXd last_change;
+  double last_step = 0.0;
+  for (int attempt = 0; attempt < options.max_steps && lf < options.final_load_factor * (1 - 1e-14); ++attempt) {
+    const double target = std::min(lf + step, options.final_load_factor);
+    State trial = res.state;
+    if (options.secant_predictor && last_change.size() > 0 && last_step > 0.0) assembly.apply_increment(trial, ((target - lf) / last_step) * last_change);
+    int iters = 0;
+    bool ok = newton_static(assembly, trial, target, options, iters);
+    if (!ok && options.secant_predictor && last_change.size() > 0) {
+      // Retry the same step without the predictor before cutting back.
+      trial = res.state;
+      int more = 0;
+      ok = newton_static(assembly, trial, target, options, more);
+      iters += more;
+    }
+    res.iterations += iters;
+    if (ok) {
+      last_change = difference(assembly, res.state, trial);
+      last_step = target - lf;
+      res.state = std::move(trial);
+      lf = target;
+      res.load_factor = lf;
+      ++res.steps;
+      cut = 0;
+      if (options.on_step) options.on_step(lf, res.state);
+      // Grow the step again after easy convergence.
+      if (iters <= 6 && ++easy >= 2) {
+        step *= 1.5;
+        easy = 0;
+      }
+    } else {
+      ++res.cutbacks;
+      easy = 0;
+      if (++cut > options.max_cutbacks) return res;
+      step *= 0.5;
+    }
+  }
+  res.converged = lf >= options.final_load_factor * (1 - 1e-14);
+  return res;
+}
+
+StaticResult solve_arc_length(const Assembly& assembly, const State& initial, const ArcLengthOptions& options) {
+  StaticResult res;
+  res.state = initial;
+  const int n = assembly.size();
+  const int nn = assembly.num_nodes();
+  NewtonLinearSolver solver([&](int i) { return assembly.dof_name(i); });
+  // Translational nodal unknowns measure the arc (Crisfield 1981, cylindrical form).
+  Eigen::VectorXd mask = Eigen::VectorXd::Zero(n);
+  for (int i = 0; i < nn; ++i) mask.segment<3>(6 * i).setOnes();
+  auto dot_t = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) { return a.cwiseProduct(mask).dot(b); };
+  Eigen::VectorXd r, r1;
+  Triplets k;
+  double scale = 0.0;
+  double lambda = 0.0, arc = 0.0;
+  Eigen::VectorXd prev_du;  // last converged step's increment (direction of travel)
+  // Reference load vector F = -dR/dlambda at a state (exact: loads are linear in lambda).
+  auto load_vector = [&](const State& s, double lf) {
+    assembly.assemble(s, lf, r, nullptr);
+    assembly.assemble(s, lf + 1.0, r1, nullptr);
+    return Eigen::VectorXd(r - r1);
+  };
+  for (int step = 0; step < options.max_steps; ++step) {
+    State trial = res.state;
+    // Predictor along the tangent.
+    assembly.assemble(trial, lambda, r, &k, &scale);
+    Eigen::VectorXd f = load_vector(trial, lambda);
+    Eigen::VectorXd uf = solver.solve(n, k, -f, assembly.step_limit());  // K uf = F (solve(-r) gives -K^-1 r)
+    if (step == 0) arc = options.initial_load_increment * std::sqrt(dot_t(uf, uf));
+    double dl = arc / std::sqrt(dot_t(uf, uf));
+    // Keep the direction of travel: past a limit point the tangent load direction reverses.
+    if (prev_du.size() > 0 && dot_t(prev_du, uf) < 0.0) dl = -dl;
+    Eigen::VectorXd du = dl * uf;
+    assembly.apply_increment(trial, du);
+    double lam = lambda + dl;
+    bool ok = false;
+    int it = 0;
+    for (; it < options.max_iterations; ++it) {
+      assembly.assemble(trial, lam, r, &k, &scale);
+      ++res.iterations;
+      if (!r.allFinite()) break;
+      if (it > 0 && r.norm() <= options.tolerance * std::max(scale, 1e-300)) {
+        ok = true;
+        break;
+      }
+      Eigen::VectorXd ur;
+      try {
+        ur = solver.solve(n, k, r, assembly.step_limit());
+      } catch (const ModelError&) {
+        break;
+      }
+      f = load_vector(trial, lam);
+      uf = solver.solve_again(f);
+      // ||du + ur + dlam uf||^2 = arc^2 on the translations.
+      const Eigen::VectorXd base = du + ur;
+      const double a1 = dot_t(uf, uf), a2 = 2.0 * dot_t(base, uf), a3 = dot_t(base, base) - arc * arc;
+      const double disc = a2 * a2 - 4.0 * a1 * a3;
+      if (disc < 0.0) break;
+      const double s1 = (-a2 + std::sqrt(disc)) / (2.0 * a1), s2 = (-a2 - std::sqrt(disc)) / (2.0 * a1);
+      // The root that keeps the increment closest to its current direction.
+      const double c1 = dot_t(base + s1 * uf, du), c2 = dot_t(base + s2 * uf, du);
+      const double dlam = c1 >= c2 ? s1 : s2;
+      const Eigen::VectorXd dx = ur + dlam * uf;
+      assembly.apply_increment(trial, dx);
+      du += dx;
+      lam += dlam;
+      // Increment criterion as in newton_static (round-off floor of stiff constraints).
+      double xmax = 1.0;
+      for (const auto& x : trial.position) xmax = std::max(xmax, x.cwiseAbs().maxCoeff());
+      const double floor = 64.0 * std::numeric_limits<double>::epsilon() * xmax * std::sqrt(static_cast<double>(n));
+      if (it > 0 && std::sqrt(dot_t(dx, dx)) <= 1e-8 * std::sqrt(dot_t(du, du)) + floor &&
+          std::abs(dlam) <= 1e-8 * std::abs(lam - lambda) + 1e-14 * std::abs(lam)) {
+        ok = true;
+        ++it;
+        break;
+      }
+    }
+    if (!ok) {
+      ++res.cutbacks;
+      arc *= 0.5;
+      if (res.cutbacks > 20) return res;
+      continue;
+    }
+    if (lam > options.final_load_factor && lambda < options.final_load_factor) {
+      // Crossed the target: land on it exactly with a load-controlled Newton from the last state.
+      State landing = res.state;
+      int its = 0;
+      if (newton_static(assembly, landing, options.final_load_factor, StaticOptions{}, its)) {
+        res.iterations += its;
+        trial = std::move(landing);
+        lam = options.final_load_factor;
+      }
+    }
+    prev_du = du;
+    lambda = lam;
+    res.state = std::move(trial);
+    res.load_factor = lambda;
+    ++res.steps;
+    if (options.on_step) options.on_step(lambda, res.state);
+    arc *= std::clamp(std::sqrt(static_cast<double>(options.desired_iterations) / std::max(it, 1)), 0.5, 2.0);
+    double umax = 0.0;
+    for (int i = 0; i < nn; ++i)
+      umax = std::max(umax, (res.state.position[i] - assembly.model().nodes[i].position).norm());
+    if (lambda >= options.final_load_factor || umax >= options.max_displacement) {
+      res.converged = true;
+      return res;
+    }
+  }
+  return res;
+}
+
+std::vector<State> solve_at_load_factors(const Assembly& assembly, const State& initial,
+                                         const std::vector<double>& load_factors, const StaticOptions& options) {
+  std::vector<State> states;
+  State state = initial;
+  double reached = 0.0;
+  for (double target : load_factors) {
+    double step = target - reached;
+    int halvings = 0;
+    while (reached < target) {
+      const double next = std::min(target, reached + step);
+      State trial = state;
+      int iterations = 0;
+      if (newton_static(assembly, trial, next, options, iterations)) {
+        state = trial;
+        reached = next;
+      } else {
+        if (++halvings > options.max_cutbacks) return states;
+        step *= 0.5;
+      }
+    }
+    states.push_back(state);
+  }
+  return states;
+}
+
+}  // namespace tfmb::beam
