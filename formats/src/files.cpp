@@ -11,6 +11,11 @@
 
 namespace tfmb::formats {
 
+void ReadFrom::fail(const std::string& object_path, const std::string& what) const {
+  throw BadInput(source.string() + ": " + object_path + ": " + what);
+}
+
+
 void write_header(h5::Writer& file, const std::string& kind, const Header& header) {
   const Schema* schema = find_schema(kind);
   if (!schema) throw InternalError("write_header: unknown file kind '" + kind + "'");

@@ -138,16 +138,6 @@ FlowConvergence read_convergence(const h5::Reader& r) {
 
 }  // namespace
 
-const FlowWall* Flow::find_wall(const std::string& name) const {
-  for (const FlowWall& w : walls)
-    if (w.name == name) return &w;
-  return nullptr;
-}
-
-void Flow::fail(const std::string& object_path, const std::string& what) const {
-  throw BadInput(source.string() + ": " + object_path + ": " + what);
-}
-
 void write_flow(const std::filesystem::path& file, const Flow& flow, const Provenance& provenance) {
   h5::Writer w(file);
   write_header(w, "flow", flow.header);

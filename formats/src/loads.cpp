@@ -6,25 +6,10 @@
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
 #include "tfmb/formats/schema.hpp"
+#include "rows.hpp"
 
 namespace tfmb::formats {
 namespace {
-
-h5::MatrixXdR rows(const std::vector<Eigen::Vector3d>& v) {
-  h5::MatrixXdR m(static_cast<Eigen::Index>(v.size()), 3);
-  for (std::size_t i = 0; i < v.size(); ++i)
-    m.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
-  return m;
-}
-
-std::vector<Eigen::Vector3d> read_rows(const h5::Reader& r, const std::string& path,
-                                       std::size_t count) {
-  const h5::MatrixXdR m = r.read_matrix(path, static_cast<Eigen::Index>(count), 3);
-  std::vector<Eigen::Vector3d> out(count);
-  for (std::size_t i = 0; i < count; ++i)
-    out[i] = m.row(static_cast<Eigen::Index>(i)).transpose();
-  return out;
-}
 
 Eigen::Vector3d read_vector3(const h5::Reader& r, const std::string& object,
                              const std::string& name) {
@@ -40,10 +25,6 @@ std::vector<double> components(const Eigen::Vector3d& v) {
 
 }  // namespace
 
-void Loads::fail(const std::string& object_path, const std::string& what) const {
-  throw BadInput(source.string() + ": " + object_path + ": " + what);
-}
-
 void write_loads(const std::filesystem::path& file, const Loads& loads,
                  const Provenance& provenance) {
   h5::Writer w(file);
@@ -53,12 +34,12 @@ void write_loads(const std::filesystem::path& file, const Loads& loads,
   for (const LoadsFlap& f : loads.flaps) {
     const std::string g = "/flaps/" + f.name;
     w.write(g + "/s", f.s, "m", "arc length of each beam node");
-    w.write(g + "/distributed_force", rows(f.distributed_force), "N/m",
+    w.write(g + "/distributed_force", detail::rows(f.distributed_force), "N/m",
             "force per unit beam length at each node, over the flap width");
-    w.write(g + "/distributed_moment", rows(f.distributed_moment), "N",
+    w.write(g + "/distributed_moment", detail::rows(f.distributed_moment), "N",
             "moment per unit beam length at each node");
-    w.write(g + "/nodal_force", rows(f.nodal_force), "N", "consistent nodal forces");
-    w.write(g + "/nodal_moment", rows(f.nodal_moment), "N m", "consistent nodal moments");
+    w.write(g + "/nodal_force", detail::rows(f.nodal_force), "N", "consistent nodal forces");
+    w.write(g + "/nodal_moment", detail::rows(f.nodal_moment), "N m", "consistent nodal moments");
     w.set_attr(g, "width", f.width);
     w.set_attr(g, "total_force", components(f.total_force));
     w.set_attr(g, "total_moment", components(f.total_moment));
@@ -95,10 +76,10 @@ Loads read_loads(const std::filesystem::path& file) {
     for (std::size_t i = 1; i < n; ++i)
       if (!(f.s[i] >= f.s[i - 1]))
         r.fail(g + "/s", "arc length decreases at node " + std::to_string(i));
-    f.distributed_force = read_rows(r, g + "/distributed_force", n);
-    f.distributed_moment = read_rows(r, g + "/distributed_moment", n);
-    f.nodal_force = read_rows(r, g + "/nodal_force", n);
-    f.nodal_moment = read_rows(r, g + "/nodal_moment", n);
+    f.distributed_force = detail::read_rows<3>(r, g + "/distributed_force", n);
+    f.distributed_moment = detail::read_rows<3>(r, g + "/distributed_moment", n);
+    f.nodal_force = detail::read_rows<3>(r, g + "/nodal_force", n);
+    f.nodal_moment = detail::read_rows<3>(r, g + "/nodal_moment", n);
     f.total_force = read_vector3(r, g, "total_force");
     f.total_moment = read_vector3(r, g, "total_moment");
     f.mapped_force = read_vector3(r, g, "mapped_force");

@@ -96,17 +96,6 @@ MaterialsFlap read_flap(const h5::Reader& r, const std::string& name) {
 
 }  // namespace
 
-const MaterialsFlap* Materials::find(const std::string& name) const {
-  for (const MaterialsFlap& f : flaps)
-    if (f.name == name)
-      return &f;
-  return nullptr;
-}
-
-void Materials::fail(const std::string& object_path, const std::string& what) const {
-  throw BadInput(source.string() + ": " + object_path + ": " + what);
-}
-
 void write_materials(const std::filesystem::path& file, const Header& header,
                      const std::vector<MaterialsFlap>& flaps, const Provenance& provenance) {
   h5::Writer w(file);

@@ -112,17 +112,6 @@ void check_joint(const h5::Reader& r, const std::string& g, const Joint& j) {
 
 }  // namespace
 
-const Flap* Model::find_flap(const std::string& name) const {
-  for (const Flap& f : flaps)
-    if (f.name == name)
-      return &f;
-  return nullptr;
-}
-
-void Model::fail(const std::string& object_path, const std::string& what) const {
-  throw BadInput(source.string() + ": " + object_path + ": " + what);
-}
-
 void write_model(const Model& model, const std::filesystem::path& file, const std::string& creator,
                  const Provenance& provenance) {
   h5::Writer w(file);

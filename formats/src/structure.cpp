@@ -5,6 +5,7 @@
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
 #include "tfmb/formats/schema.hpp"
+#include "rows.hpp"
 
 namespace tfmb::formats {
 namespace {
@@ -19,42 +20,11 @@ const std::map<std::string, std::string>& joint_scalar_units() {
   return units;
 }
 
-h5::MatrixXdR rows(const std::vector<Eigen::Vector3d>& v) {
-  h5::MatrixXdR m(static_cast<Eigen::Index>(v.size()), 3);
-  for (std::size_t i = 0; i < v.size(); ++i)
-    m.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
-  return m;
-}
-
-h5::MatrixXdR rows(const std::vector<Vector6>& v) {
-  h5::MatrixXdR m(static_cast<Eigen::Index>(v.size()), 6);
-  for (std::size_t i = 0; i < v.size(); ++i)
-    m.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
-  return m;
-}
-
 std::vector<double> flat(const std::vector<std::vector<Eigen::Vector3d>>& snapshots) {
   std::vector<double> out;
   for (const auto& snapshot : snapshots)
     for (const auto& p : snapshot)
       out.insert(out.end(), {p.x(), p.y(), p.z()});
-  return out;
-}
-
-std::vector<Eigen::Vector3d> read_rows3(const h5::Reader& r, const std::string& path,
-                                        std::size_t count) {
-  const h5::MatrixXdR m = r.read_matrix(path, static_cast<Eigen::Index>(count), 3);
-  std::vector<Eigen::Vector3d> out(count);
-  for (std::size_t i = 0; i < count; ++i)
-    out[i] = m.row(static_cast<Eigen::Index>(i)).transpose();
-  return out;
-}
-
-std::vector<Vector6> read_rows6(const h5::Reader& r, const std::string& path, std::size_t count) {
-  const h5::MatrixXdR m = r.read_matrix(path, static_cast<Eigen::Index>(count), 6);
-  std::vector<Vector6> out(count);
-  for (std::size_t i = 0; i < count; ++i)
-    out[i] = m.row(static_cast<Eigen::Index>(i)).transpose();
   return out;
 }
 
@@ -123,10 +93,10 @@ void read_restart(const h5::Reader& r, Structure& s) {
     return;
   const std::size_t n = s.points.size();
   StructureRestart restart;
-  restart.velocity = read_rows3(r, "/restart/velocity", n);
+  restart.velocity = detail::read_rows<3>(r, "/restart/velocity", n);
   if (!r.exists("/restart/angular_velocity"))
     r.fail("/restart", "angular_velocity missing beside velocity");
-  restart.angular_velocity = read_rows3(r, "/restart/angular_velocity", n);
+  restart.angular_velocity = detail::read_rows<3>(r, "/restart/angular_velocity", n);
   if (r.exists("/restart/joint_dofs")) {
     restart.joint_dofs = r.read_vector("/restart/joint_dofs");
     restart.joint_rates = r.read_vector("/restart/joint_rates", restart.joint_dofs.size());
@@ -138,33 +108,22 @@ void read_restart(const h5::Reader& r, Structure& s) {
 
 }  // namespace
 
-const StructureFlap* Structure::find_flap(const std::string& name) const {
-  for (const StructureFlap& f : flaps)
-    if (f.name == name)
-      return &f;
-  return nullptr;
-}
-
-void Structure::fail(const std::string& object_path, const std::string& what) const {
-  throw BadInput(source.string() + ": " + object_path + ": " + what);
-}
-
 void write_structure(const std::filesystem::path& file, const Structure& s,
                      const Provenance& provenance) {
   h5::Writer w(file);
   write_header(w, "structure", s.header);
   w.set_attr("/", "analysis", s.analysis);
   w.set_attr("/", "converged", static_cast<std::int64_t>(s.converged ? 1 : 0));
-  w.write("/beam/points", rows(s.points), "m", "beam node reference positions");
+  w.write("/beam/points", detail::rows(s.points), "m", "beam node reference positions");
   h5::MatrixXiR segments(static_cast<Eigen::Index>(s.segments.size()), 2);
   for (std::size_t k = 0; k < s.segments.size(); ++k)
     segments.row(static_cast<Eigen::Index>(k)) << s.segments[k][0], s.segments[k][1];
   w.write("/beam/segments", segments, "1", "display segments (two per quadratic element)");
-  w.write("/fields/point/displacement", rows(s.displacement), "m");
-  w.write("/fields/point/rotation", rows(s.rotation), "1", "Wiener-Milenkovic rotation parameters");
-  w.write("/fields/cell/sectional_strain", rows(s.sectional_strain), "1, 1/m",
+  w.write("/fields/point/displacement", detail::rows(s.displacement), "m");
+  w.write("/fields/point/rotation", detail::rows(s.rotation), "1", "Wiener-Milenkovic rotation parameters");
+  w.write("/fields/cell/sectional_strain", detail::rows(s.sectional_strain), "1, 1/m",
           "per segment (Gauss point of the element half): axial, 2 shear, torsion, 2 curvatures");
-  w.write("/fields/cell/sectional_force", rows(s.sectional_force), "N, N m",
+  w.write("/fields/cell/sectional_force", detail::rows(s.sectional_force), "N, N m",
           "axial, 2 shear forces, torsion, 2 bending moments");
   for (const StructureFlap& f : s.flaps) {
     w.write("/flaps/" + f.name + "/nodes", f.nodes);
@@ -199,9 +158,9 @@ void write_structure(const std::filesystem::path& file, const Structure& s,
         "nodal translations of each mode, divided by the largest entry of the mode vector");
   }
   if (s.restart) {
-    w.write("/restart/velocity", rows(s.restart->velocity), "m/s",
+    w.write("/restart/velocity", detail::rows(s.restart->velocity), "m/s",
             "nodal velocity at the end of the run");
-    w.write("/restart/angular_velocity", rows(s.restart->angular_velocity), "rad/s",
+    w.write("/restart/angular_velocity", detail::rows(s.restart->angular_velocity), "rad/s",
             "nodal angular velocity, material frame");
     if (!s.restart->joint_dofs.empty()) {
       w.write("/restart/joint_dofs", s.restart->joint_dofs, "rad",
@@ -225,15 +184,15 @@ Structure read_structure(const std::filesystem::path& file) {
   s.converged = r.attr_i64("/", "converged") == 1;
   const h5::MatrixXdR points = r.read_matrix("/beam/points", std::nullopt, 3);
   const auto n = static_cast<std::size_t>(points.rows());
-  s.points = read_rows3(r, "/beam/points", n);
+  s.points = detail::read_rows<3>(r, "/beam/points", n);
   const h5::MatrixXiR segments =
       r.read_index_matrix("/beam/segments", std::nullopt, 2, 0, static_cast<std::int64_t>(n));
   for (Eigen::Index k = 0; k < segments.rows(); ++k)
     s.segments.push_back({segments(k, 0), segments(k, 1)});
-  s.displacement = read_rows3(r, "/fields/point/displacement", n);
-  s.rotation = read_rows3(r, "/fields/point/rotation", n);
-  s.sectional_strain = read_rows6(r, "/fields/cell/sectional_strain", s.segments.size());
-  s.sectional_force = read_rows6(r, "/fields/cell/sectional_force", s.segments.size());
+  s.displacement = detail::read_rows<3>(r, "/fields/point/displacement", n);
+  s.rotation = detail::read_rows<3>(r, "/fields/point/rotation", n);
+  s.sectional_strain = detail::read_rows<6>(r, "/fields/cell/sectional_strain", s.segments.size());
+  s.sectional_force = detail::read_rows<6>(r, "/fields/cell/sectional_force", s.segments.size());
   read_flaps(r, s);
   read_joints(r, s);
   if (r.exists("/history/time")) {

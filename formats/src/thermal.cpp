@@ -7,17 +7,6 @@
 
 namespace tfmb::formats {
 
-const ThermalBeamFlap* Thermal::find_flap(const std::string& name) const {
-  for (const ThermalBeamFlap& f : beam)
-    if (f.name == name)
-      return &f;
-  return nullptr;
-}
-
-void Thermal::fail(const std::string& object_path, const std::string& what) const {
-  throw BadInput(source.string() + ": " + object_path + ": " + what);
-}
-
 void write_thermal(const std::filesystem::path& file, const Thermal& thermal,
                    const Provenance& provenance) {
   h5::Writer w(file);

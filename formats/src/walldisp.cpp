@@ -6,19 +6,9 @@
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
 #include "tfmb/formats/schema.hpp"
+#include "rows.hpp"
 
 namespace tfmb::formats {
-namespace {
-
-h5::MatrixXdR rows(const std::vector<Eigen::Vector2d>& v) {
-  h5::MatrixXdR m(static_cast<Eigen::Index>(v.size()), 2);
-  for (std::size_t i = 0; i < v.size(); ++i)
-    m.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
-  return m;
-}
-
-}  // namespace
-
 void write_walldisp(const std::filesystem::path& file, const WallDisplacements& walls,
                     const Provenance& provenance) {
   h5::Writer w(file);
@@ -26,8 +16,8 @@ void write_walldisp(const std::filesystem::path& file, const WallDisplacements& 
   w.set_attr("/", "wall_source", walls.wall_source);
   for (const WallDisplacement& wall : walls.walls) {
     const std::string g = "/walls/" + wall.name;
-    w.write(g + "/x0", rows(wall.x0), "m", "undeformed wall point");
-    w.write(g + "/displacement", rows(wall.displacement), "m", "displacement");
+    w.write(g + "/x0", detail::rows(wall.x0), "m", "undeformed wall point");
+    w.write(g + "/displacement", detail::rows(wall.displacement), "m", "displacement");
     if (!wall.nodes.empty())
       w.write(g + "/node", wall.nodes, "1", "flow mesh node of each point");
     w.set_attr(g, "flap", wall.flap);

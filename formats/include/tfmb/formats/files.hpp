@@ -25,6 +25,21 @@ struct Header {
 void write_header(h5::Writer& file, const std::string& kind, const Header& header);
 Header read_header(const h5::Reader& file);
 
+// What a typed reader returns derives from this: the file it was read from, so that a stage's own
+// checks on the contents fail with the same located line as the reader's ("file: /path: what").
+struct ReadFrom {
+  std::filesystem::path source;  // "" if built in memory
+  [[noreturn]] void fail(const std::string& object_path, const std::string& what) const;
+};
+
+// The item called `name` in a list of named items (flaps, walls, ...), or nullptr.
+template <class Named>
+const Named* find_named(const std::vector<Named>& items, const std::string& name) {
+  for (const Named& item : items)
+    if (item.name == name) return &item;
+  return nullptr;
+}
+
 struct Provenance {
   std::string command_line;
   std::string settings;  // resolved settings, TOML text

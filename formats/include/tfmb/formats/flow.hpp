@@ -49,8 +49,7 @@ struct FlowConvergence {
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> residual_history;  // (I,k)
 };
 
-struct Flow {
-  std::filesystem::path source;  // the file it was read from
+struct Flow : ReadFrom {
   Header header;
   Mesh mesh;
   // Node fields.
@@ -68,9 +67,7 @@ struct Flow {
          gas_constant = 287.05;
   FlowConvergence convergence;
 
-  const FlowWall* find_wall(const std::string& name) const;
-  // A BadInput naming the source file and the object in it (for the readers' own checks).
-  [[noreturn]] void fail(const std::string& object_path, const std::string& what) const;
+  const FlowWall* find_wall(const std::string& name) const { return find_named(walls, name); }
 };
 
 // Writes flow.h5 atomically and its XDMF sidecar.

@@ -28,15 +28,12 @@ struct LoadsFlap {
   Eigen::Vector3d mapped_moment = Eigen::Vector3d::Zero();  // [N m]
 };
 
-struct Loads {
-  std::filesystem::path source;  // the file it was read from
+struct Loads : ReadFrom {
   Header header;
   std::string method;            // linear | conservative
   std::string load_basis;        // what the loads are per (loads.md)
   std::vector<LoadsFlap> flaps;  // by name
 
-  // A BadInput naming the source file and the object in it (for the readers' own checks).
-  [[noreturn]] void fail(const std::string& object_path, const std::string& what) const;
 };
 
 // Writes loads.h5 atomically (header, flaps, provenance).

@@ -48,14 +48,11 @@ struct MaterialsFlap {
   MaterialElements elements;
 };
 
-struct Materials {
-  std::filesystem::path source;  // the file it was read from
+struct Materials : ReadFrom {
   Header header;
   std::vector<MaterialsFlap> flaps;  // by name
 
-  const MaterialsFlap* find(const std::string& name) const;
-  // A BadInput naming the source file and the object in it (for the readers' own checks).
-  [[noreturn]] void fail(const std::string& object_path, const std::string& what) const;
+  const MaterialsFlap* find(const std::string& name) const { return find_named(flaps, name); }
 };
 
 // Writes materials.h5 atomically (header with `creator`, flaps, provenance).

@@ -165,8 +165,7 @@ struct AnalysisSettings {
   double relaxation = 0.5;               // [1]
 };
 
-struct Model {
-  std::filesystem::path source;     // the file it was read from ("" if built in memory)
+struct Model : ReadFrom {
   std::string geometry = "planar";  // header: planar | axisymmetric
   std::string title;
   double depth = 1.0;  // [m]
@@ -179,10 +178,7 @@ struct Model {
   MeshControls mesh;
   AnalysisSettings analysis;
 
-  const Flap* find_flap(const std::string& name) const;
-  // A BadInput naming the source file and the object in it, as a reader's check does: for the
-  // checks a stage makes while converting the model to its own working type.
-  [[noreturn]] void fail(const std::string& object_path, const std::string& what) const;
+  const Flap* find_flap(const std::string& name) const { return find_named(flaps, name); }
 };
 
 // Writes model.h5 atomically (header, everything above, provenance); `creator` is the program

@@ -43,8 +43,7 @@ struct StructureRestart {
   double time = 0.0;                              // [s]
 };
 
-struct Structure {
-  std::filesystem::path source;  // the file it was read from
+struct Structure : ReadFrom {
   Header header;
   std::string analysis;  // static | dynamic | modal
   bool converged = false;
@@ -62,9 +61,7 @@ struct Structure {
   std::vector<std::vector<Eigen::Vector3d>> mode_displacement;     // [mode][node], normalised
   std::optional<StructureRestart> restart;
 
-  const StructureFlap* find_flap(const std::string& name) const;
-  // A BadInput naming the source file and the object in it (for the readers' own checks).
-  [[noreturn]] void fail(const std::string& object_path, const std::string& what) const;
+  const StructureFlap* find_flap(const std::string& name) const { return find_named(flaps, name); }
 };
 
 // Writes structure.h5 atomically and its XDMF sidecar.

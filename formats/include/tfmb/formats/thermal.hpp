@@ -17,8 +17,7 @@ struct ThermalBeamFlap {
   std::vector<double> delta_temperature;  // [K] outer minus inner surface
 };
 
-struct Thermal {
-  std::filesystem::path source;  // the file it was read from
+struct Thermal : ReadFrom {
   Header header;
   Mesh mesh;                          // the solid mesh
   std::vector<double> temperature;    // [K] per node
@@ -28,9 +27,7 @@ struct Thermal {
   std::int64_t iterations = 0;
   std::string criterion;
 
-  const ThermalBeamFlap* find_flap(const std::string& name) const;
-  // A BadInput naming the source file and the object in it (for the readers' own checks).
-  [[noreturn]] void fail(const std::string& object_path, const std::string& what) const;
+  const ThermalBeamFlap* find_flap(const std::string& name) const { return find_named(beam, name); }
 };
 
 // Writes thermal.h5 atomically and its XDMF sidecar.

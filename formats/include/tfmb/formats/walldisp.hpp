@@ -22,8 +22,7 @@ struct WallDisplacement {
   std::vector<Eigen::Vector2d> displacement;  // [m]
 };
 
-struct WallDisplacements {
-  std::filesystem::path source;  // the file it was read from
+struct WallDisplacements : ReadFrom {
   Header header;
   std::string wall_source;              // where the points come from (model walls or a flow mesh)
   std::vector<WallDisplacement> walls;  // by name
