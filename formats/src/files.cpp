@@ -15,7 +15,6 @@ void ReadFrom::fail(const std::string& object_path, const std::string& what) con
   throw BadInput(source.string() + ": " + object_path + ": " + what);
 }
 
-
 void write_header(h5::Writer& file, const std::string& kind, const Header& header) {
   const Schema* schema = find_schema(kind);
   if (!schema) throw InternalError("write_header: unknown file kind '" + kind + "'");

@@ -3,10 +3,10 @@
 
 #include <sstream>
 
+#include "rows.hpp"
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
 #include "tfmb/formats/schema.hpp"
-#include "rows.hpp"
 
 namespace tfmb::formats {
 namespace {

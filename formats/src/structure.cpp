@@ -2,10 +2,10 @@
 // schema_structure.cpp).
 #include "tfmb/formats/structure.hpp"
 
+#include "rows.hpp"
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
 #include "tfmb/formats/schema.hpp"
-#include "rows.hpp"
 
 namespace tfmb::formats {
 namespace {
@@ -120,7 +120,8 @@ void write_structure(const std::filesystem::path& file, const Structure& s,
     segments.row(static_cast<Eigen::Index>(k)) << s.segments[k][0], s.segments[k][1];
   w.write("/beam/segments", segments, "1", "display segments (two per quadratic element)");
   w.write("/fields/point/displacement", detail::rows(s.displacement), "m");
-  w.write("/fields/point/rotation", detail::rows(s.rotation), "1", "Wiener-Milenkovic rotation parameters");
+  w.write("/fields/point/rotation", detail::rows(s.rotation), "1",
+          "Wiener-Milenkovic rotation parameters");
   w.write("/fields/cell/sectional_strain", detail::rows(s.sectional_strain), "1, 1/m",
           "per segment (Gauss point of the element half): axial, 2 shear, torsion, 2 curvatures");
   w.write("/fields/cell/sectional_force", detail::rows(s.sectional_force), "N, N m",

@@ -3,10 +3,10 @@
 
 #include <limits>
 
+#include "rows.hpp"
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
 #include "tfmb/formats/schema.hpp"
-#include "rows.hpp"
 
 namespace tfmb::formats {
 void write_walldisp(const std::filesystem::path& file, const WallDisplacements& walls,

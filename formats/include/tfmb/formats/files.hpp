@@ -36,7 +36,8 @@ struct ReadFrom {
 template <class Named>
 const Named* find_named(const std::vector<Named>& items, const std::string& name) {
   for (const Named& item : items)
-    if (item.name == name) return &item;
+    if (item.name == name)
+      return &item;
   return nullptr;
 }
 

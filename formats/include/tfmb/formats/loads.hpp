@@ -33,7 +33,6 @@ struct Loads : ReadFrom {
   std::string method;            // linear | conservative
   std::string load_basis;        // what the loads are per (loads.md)
   std::vector<LoadsFlap> flaps;  // by name
-
 };
 
 // Writes loads.h5 atomically (header, flaps, provenance).
