@@ -6,6 +6,7 @@
 #include "tfmb/common/options.hpp"
 #include "tfmb/formats/files.hpp"
 #include "tfmb/formats/flow.hpp"
+#include "tfmb/formats/solidmesh.hpp"
 #include "tfmb/formats/model.hpp"
 #include "tfmb/formats/schema.hpp"
 #include "tfmb/formats/thermal.hpp"
@@ -135,31 +136,28 @@ std::vector<double> trace_values(const formats::Flow& flow, const std::string& w
 struct SolidInput {
   explicit SolidInput(const std::filesystem::path& path);
 
-  h5::Reader file;
-  formats::Header header;
-  formats::Mesh mesh_in;  // as read: written back to thermal.h5
-  SolidMesh mesh;         // the conduction mesh (cell materials set by assign_materials)
+  formats::SolidMesh file;  // as read: its mesh is written back to thermal.h5
+  const formats::Header& header;
+  const formats::Mesh& mesh_in;
+  SolidMesh mesh;  // the conduction mesh (cell materials set by assign_materials)
   std::size_t cell_count = 0;
-  std::vector<std::string> flap_names;
-  std::vector<std::int64_t> cell_flap, cell_element;  // per cell its flap and beam element
+  const std::vector<std::string>& flap_names;
+  const std::vector<std::int64_t>& cell_flap;     // per cell its flap
+  const std::vector<std::int64_t>& cell_element;  // per cell its beam element
   Eigen::VectorXd node_z;  // [m] per node the through-thickness coordinate
 };
 
 SolidInput::SolidInput(const std::filesystem::path& path)
-    : file(formats::open_checked(path, "solidmesh")),
-      header(formats::read_header(file)),
-      mesh_in(formats::read_mesh(file)),
+    : file(formats::read_solidmesh(path)),
+      header(file.header),
+      mesh_in(file.mesh),
       mesh(to_solid_mesh(mesh_in)),
-      cell_count(static_cast<std::size_t>(mesh_in.cell_count())) {
-  flap_names = file.read_strings("/link/flap_names");
-  cell_flap = file.read_index_vector("/link/cell_flap", cell_count, 0,
-                                     static_cast<std::int64_t>(flap_names.size()));
-  cell_element = file.read_index_vector("/link/cell_element", cell_count, 0,
-                                        std::numeric_limits<std::int64_t>::max());
-  const auto z_values = file.read_vector("/link/point_thickness_coordinate", mesh.node_count());
-  node_z = Eigen::Map<const Eigen::VectorXd>(z_values.data(),
-                                             static_cast<Eigen::Index>(z_values.size()));
-}
+      cell_count(static_cast<std::size_t>(mesh_in.cell_count())),
+      flap_names(file.flap_names),
+      cell_flap(file.cell_flap),
+      cell_element(file.cell_element),
+      node_z(Eigen::Map<const Eigen::VectorXd>(file.point_thickness_coordinate.data(),
+                                               static_cast<Eigen::Index>(file.point_thickness_coordinate.size()))) {}
 
 // The model's flap of a flap of the solid mesh; both files must describe the same flaps.
 const formats::Flap& model_flap(const formats::Model& model, const std::string& name) {

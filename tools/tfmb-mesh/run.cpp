@@ -3,6 +3,7 @@
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/text.hpp"
 #include "tfmb/formats/schema.hpp"
+#include "tfmb/formats/solidmesh.hpp"
 
 namespace tfmb::mesh {
 namespace {
@@ -79,23 +80,15 @@ int run(const Options& options, const Logger& log) {
     SolidLink link;
     const Mesh mesh = build_solid_mesh(model, link);
     const Quality q = mesh_quality(mesh);
-    {
-      h5::Writer w(options.output);
-      formats::Header header;
-      header.creator = "tfmb-mesh " + cli::version();
-      header.depth = model.depth;
-      formats::write_header(w, "solidmesh", header);
-      formats::write_mesh(w, mesh);
-      w.write_strings("/link/flap_names", link.flap_names, "flap names, indexed by cell_flap");
-      w.write("/link/cell_flap", link.cell_flap, "1", "flap index of each cell");
-      w.write("/link/cell_element", link.cell_element, "1",
-              "beam element (within its flap) of each cell");
-      w.write("/link/point_thickness_coordinate", link.point_thickness_coordinate, "m",
-              "signed distance from the reference line, positive towards the outer wall");
-      formats::write_provenance(w, provenance(options, {options.input}));
-      w.commit();
-    }
-    formats::write_xdmf_sidecar(options.output);
+    formats::SolidMesh out;
+    out.header.creator = "tfmb-mesh " + cli::version();
+    out.header.depth = model.depth;
+    out.mesh = mesh;
+    out.flap_names = link.flap_names;
+    out.cell_flap = link.cell_flap;
+    out.cell_element = link.cell_element;
+    out.point_thickness_coordinate = link.point_thickness_coordinate;
+    formats::write_solidmesh(options.output, out, provenance(options, {options.input}));
     log.info("quality: " + quality_text(q));
     log.summary("wrote " + options.output.string() + ": " + std::to_string(mesh.node_count()) +
                 " nodes, " + std::to_string(mesh.quads.rows()) + " quads in " +
