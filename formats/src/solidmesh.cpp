@@ -9,14 +9,16 @@
 
 namespace tfmb::formats {
 
-void write_solidmesh(const std::filesystem::path& file, const SolidMesh& solid, const Provenance& provenance) {
+void write_solidmesh(const std::filesystem::path& file, const SolidMesh& solid,
+                     const Provenance& provenance) {
   {
     h5::Writer w(file);
     write_header(w, "solidmesh", solid.header);
     write_mesh(w, solid.mesh);
     w.write_strings("/link/flap_names", solid.flap_names, "flap names, indexed by cell_flap");
     w.write("/link/cell_flap", solid.cell_flap, "1", "flap index of each cell");
-    w.write("/link/cell_element", solid.cell_element, "1", "beam element (within its flap) of each cell");
+    w.write("/link/cell_element", solid.cell_element, "1",
+            "beam element (within its flap) of each cell");
     w.write("/link/point_thickness_coordinate", solid.point_thickness_coordinate, "m",
             "signed distance from the reference line, positive towards the outer wall");
     write_provenance(w, provenance);
@@ -33,12 +35,14 @@ SolidMesh read_solidmesh(const std::filesystem::path& file) {
   solid.mesh = read_mesh(r);
   const std::size_t cells = solid.mesh.cell_count();
   solid.flap_names = r.read_strings("/link/flap_names");
-  if (solid.flap_names.empty()) r.fail("/link/flap_names", "no flaps");
-  solid.cell_flap =
-      r.read_index_vector("/link/cell_flap", cells, 0, static_cast<std::int64_t>(solid.flap_names.size()));
+  if (solid.flap_names.empty())
+    r.fail("/link/flap_names", "no flaps");
+  solid.cell_flap = r.read_index_vector("/link/cell_flap", cells, 0,
+                                        static_cast<std::int64_t>(solid.flap_names.size()));
   solid.cell_element =
       r.read_index_vector("/link/cell_element", cells, 0, std::numeric_limits<std::int64_t>::max());
-  solid.point_thickness_coordinate = r.read_vector("/link/point_thickness_coordinate", solid.mesh.node_count());
+  solid.point_thickness_coordinate =
+      r.read_vector("/link/point_thickness_coordinate", solid.mesh.node_count());
   return solid;
 }
 

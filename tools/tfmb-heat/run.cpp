@@ -1,20 +1,20 @@
 #include "tfmb-heat/run.hpp"
 
+#include "tfmb-heat/beam_outputs.hpp"
+#include "tfmb-heat/boundary_geometry.hpp"
+#include "tfmb-heat/heat_flux.hpp"
+#include "tfmb-heat/steady_solver.hpp"
+#include "tfmb-heat/wall_mapping.hpp"
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
 #include "tfmb/common/log.hpp"
 #include "tfmb/common/options.hpp"
 #include "tfmb/formats/files.hpp"
 #include "tfmb/formats/flow.hpp"
-#include "tfmb/formats/solidmesh.hpp"
 #include "tfmb/formats/model.hpp"
 #include "tfmb/formats/schema.hpp"
+#include "tfmb/formats/solidmesh.hpp"
 #include "tfmb/formats/thermal.hpp"
-#include "tfmb-heat/beam_outputs.hpp"
-#include "tfmb-heat/boundary_geometry.hpp"
-#include "tfmb-heat/heat_flux.hpp"
-#include "tfmb-heat/steady_solver.hpp"
-#include "tfmb-heat/wall_mapping.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -156,8 +156,9 @@ SolidInput::SolidInput(const std::filesystem::path& path)
       flap_names(file.flap_names),
       cell_flap(file.cell_flap),
       cell_element(file.cell_element),
-      node_z(Eigen::Map<const Eigen::VectorXd>(file.point_thickness_coordinate.data(),
-                                               static_cast<Eigen::Index>(file.point_thickness_coordinate.size()))) {}
+      node_z(Eigen::Map<const Eigen::VectorXd>(
+          file.point_thickness_coordinate.data(),
+          static_cast<Eigen::Index>(file.point_thickness_coordinate.size()))) {}
 
 // The model's flap of a flap of the solid mesh; both files must describe the same flaps.
 const formats::Flap& model_flap(const formats::Model& model, const std::string& name) {

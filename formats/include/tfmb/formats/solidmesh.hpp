@@ -22,7 +22,8 @@ struct SolidMesh : ReadFrom {
 };
 
 // Writes solidmesh.h5 atomically and its XDMF sidecar.
-void write_solidmesh(const std::filesystem::path& file, const SolidMesh& solid, const Provenance& provenance);
+void write_solidmesh(const std::filesystem::path& file, const SolidMesh& solid,
+                     const Provenance& provenance);
 // Reads and validates a solidmesh file (BadInput naming the file and the object on any problem).
 SolidMesh read_solidmesh(const std::filesystem::path& file);
 
