@@ -6,6 +6,7 @@
 
 #include "tfmb/common/errors.hpp"
 #include "tfmb/formats/loads.hpp"
+#include "tfmb/formats/material_db.hpp"
 #include "tfmb/formats/materials.hpp"
 
 namespace fs = std::filesystem;
@@ -117,4 +118,20 @@ TEST(TypedIo, LoadsRoundTripAndAReversedArcLengthIsRefused) {
         }
       },
       BadInput);
+}
+
+// tfmb-matmap and tfmb-heat resolve a model's material name by the one rule of the database
+// reader (they had two: heat kept '-' and '_' significant, so "Ti_6Al_4V" failed there only).
+TEST(TypedIo, MaterialNamesResolveByOneRule) {
+  EXPECT_TRUE(formats::same_material_name("Ti-6Al-4V", "ti_6al 4v"));
+  EXPECT_FALSE(formats::same_material_name("Ti-6Al-4V", "Ti-6Al-4V-ELI"));
+  const formats::MaterialDatabase db =
+      formats::read_material_db(fs::path(TFMB_SOURCE_DIR) / "data" / "materials-db.h5");
+  ASSERT_FALSE(db.materials.empty());
+  const formats::DatabaseMaterial& first = db.materials.front();
+  std::string spelled = first.name;
+  for (char& c : spelled)
+    if (c == '-') c = '_';
+  EXPECT_EQ(db.find(spelled), &first);
+  EXPECT_EQ(db.find("no such material"), nullptr);
 }

@@ -11,6 +11,7 @@
 #include "tfmb/common/options.hpp"
 #include "tfmb/formats/files.hpp"
 #include "tfmb/formats/flow.hpp"
+#include "tfmb/formats/material_db.hpp"
 #include "tfmb/formats/model.hpp"
 #include "tfmb/formats/schema.hpp"
 #include "tfmb/formats/solidmesh.hpp"
@@ -48,57 +49,25 @@ SolidMesh to_solid_mesh(const formats::Mesh& in) {
   return mesh;
 }
 
-PropertyTable read_property(const h5::Reader& db, const std::string& material,
+// A property table of a database material as the conduction solver takes it.
+PropertyTable read_property(const formats::MaterialDatabase& db, const formats::DatabaseMaterial& material,
                             const std::string& property) {
-  const std::string group = "/materials/" + material + "/" + property;
-  if (!db.exists(group))
-    db.fail(group, "missing: material '" + material + "' has no " + property + " table");
-  auto temperature = db.read_vector(group + "/temperature");
-  auto value = db.read_vector(group + "/value", temperature.size());
+  const std::string group = "/materials/" + material.name + "/" + property;
+  const auto table = material.properties.find(property);
+  if (table == material.properties.end())
+    db.fail(group, "missing: material '" + material.name + "' has no " + property + " table");
   try {
-    return PropertyTable(std::move(temperature), std::move(value));
+    return PropertyTable(table->second.temperature, table->second.value);
   } catch (const std::invalid_argument& error) {
     db.fail(group, error.what());
   }
 }
 
 // Steady runs need only the conductivity; density and specific heat are read when present.
-PropertyTable read_optional_property(const h5::Reader& db, const std::string& material,
+PropertyTable read_optional_property(const formats::MaterialDatabase& db, const formats::DatabaseMaterial& material,
                                      const std::string& property) {
-  if (!db.exists("/materials/" + material + "/" + property))
-    return {};
+  if (!material.properties.count(property)) return {};
   return read_property(db, material, property);
-}
-
-std::string lower_trimmed(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    if (!std::isspace(static_cast<unsigned char>(c)))
-      out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  }
-  return out;
-}
-
-// The database group of a material named in the model: its own name or one of its aliases,
-// matched without case (as tfmb-matmap does). Empty if none.
-std::string resolve_material(const h5::Reader& db, const std::string& name) {
-  const std::string key = lower_trimmed(name);
-  const auto materials = db.children("/materials");
-  for (const auto& m : materials) {
-    if (lower_trimmed(m) == key)
-      return m;
-  }
-  for (const auto& m : materials) {
-    const std::string group = "/materials/" + m;
-    if (!db.has_attr(group, "aliases"))
-      continue;
-    std::stringstream aliases(db.attr_string(group, "aliases"));
-    for (std::string alias; std::getline(aliases, alias, ',');) {
-      if (lower_trimmed(alias) == key)
-        return m;
-    }
-  }
-  return {};
 }
 
 struct FlowWall {
@@ -174,21 +143,23 @@ const formats::Flap& model_flap(const formats::Model& model, const std::string& 
 // the database, one entry per distinct material; every cell gets its flap's.
 void assign_materials(const Options& options, const formats::Model& model, SolidInput& solid,
                       ThermalProblem& problem) {
-  const auto db = formats::open_checked(options.material_db, "material-db");
+  const formats::MaterialDatabase db = formats::read_material_db(options.material_db);
   std::map<std::string, int> material_index;
   std::vector<int> flap_material(solid.flap_names.size());
   for (std::size_t f = 0; f < solid.flap_names.size(); ++f) {
     const std::string named = model_flap(model, solid.flap_names[f]).material;
-    const std::string material = resolve_material(db, named);
-    if (material.empty()) {
+    // The same name-or-alias rule as tfmb-matmap's: formats::MaterialDatabase::find.
+    const formats::DatabaseMaterial* entry = db.find(named);
+    if (!entry) {
       db.fail("/materials", "no material or alias '" + named + "' (flap '" + solid.flap_names[f] +
                                 "' of " + options.model.string() + ")");
     }
+    const std::string& material = entry->name;
     if (!material_index.count(material)) {
       material_index[material] = static_cast<int>(problem.materials.size());
-      problem.materials.push_back({material, read_property(db, material, "conductivity"),
-                                   read_optional_property(db, material, "density"),
-                                   read_optional_property(db, material, "specific_heat")});
+      problem.materials.push_back({material, read_property(db, *entry, "conductivity"),
+                                   read_optional_property(db, *entry, "density"),
+                                   read_optional_property(db, *entry, "specific_heat")});
       try {
         validate_material(problem.materials.back(), false);
       } catch (const std::invalid_argument& error) {

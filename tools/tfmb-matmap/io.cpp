@@ -5,6 +5,7 @@
 
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
+#include "tfmb/formats/material_db.hpp"
 #include "tfmb/formats/model.hpp"
 #include "tfmb/formats/schema.hpp"
 #include "tfmb/formats/thermal.hpp"
@@ -12,36 +13,18 @@
 namespace tfmb::matmap {
 
 MaterialDatabase read_material_db(const std::filesystem::path& file) {
-  const h5::Reader reader = formats::open_checked(file, "material-db");
+  const formats::MaterialDatabase in = formats::read_material_db(file);
   MaterialDatabase db;
-  if (reader.has_attr("/", "default_titanium")) db.default_titanium = reader.attr_string("/", "default_titanium");
-  for (const std::string& name : reader.children("/materials")) {
-    const std::string g = "/materials/" + name;
+  db.default_titanium = in.default_titanium;
+  for (const formats::DatabaseMaterial& entry : in.materials) {
     Material m;
-    m.name = name;
-    m.description = reader.attr_string(g, "description");
-    m.reference_temperature = reader.attr_f64(g, "reference_temperature");
-    m.missing = reader.attr_string(g, "missing");
-    std::stringstream aliases(reader.attr_string(g, "aliases"));
-    for (std::string alias; std::getline(aliases, alias, ',');) {
-      if (!alias.empty()) m.aliases.push_back(alias);
-    }
-    for (const std::string& property : reader.children(g)) {
-      const std::string p = g + "/" + property;
-      PropertyTable t;
-      t.name = property;
-      t.temperature = reader.read_vector(p + "/temperature");
-      t.value = reader.read_vector(p + "/value", t.temperature.size());
-      t.units = reader.attr_string(p + "/value", "units");
-      t.exactness = reader.attr_string(p, "exactness");
-      if (t.temperature.empty()) reader.fail(p + "/temperature", "empty table");
-      for (std::size_t i = 1; i < t.temperature.size(); ++i) {
-        if (!(t.temperature[i] > t.temperature[i - 1])) {
-          reader.fail(p + "/temperature", "not strictly increasing at row " + std::to_string(i));
-        }
-      }
-      m.properties[property] = std::move(t);
-    }
+    m.name = entry.name;
+    m.description = entry.description;
+    m.aliases = entry.aliases;
+    m.reference_temperature = entry.reference_temperature;
+    m.missing = entry.missing;
+    for (const auto& [property, table] : entry.properties)
+      m.properties[property] = {property, table.units, table.temperature, table.value, table.exactness};
     db.materials.push_back(std::move(m));
   }
   return db;

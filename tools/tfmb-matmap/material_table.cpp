@@ -1,22 +1,12 @@
 #include "material_table.hpp"
-#include "tfmb/common/text.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <sstream>
 
-namespace tfmb::matmap {
+#include "tfmb/common/text.hpp"
+#include "tfmb/formats/material_db.hpp"
 
-namespace {
-std::string normalise(const std::string& name) {
-  std::string out;
-  for (char c : name) {
-    if (c == ' ' || c == '-' || c == '_') continue;
-    out.push_back(static_cast<char>(std::tolower(static_cast<unsigned char>(c))));
-  }
-  return out;
-}
-}  // namespace
+namespace tfmb::matmap {
 
 OutsideTable::OutsideTable(const PropertyTable& table, double t)
     : std::runtime_error(text::format_number(t) + " K is outside the " + table.name + " table [" +
@@ -56,13 +46,13 @@ const PropertyTable& Material::require(const std::string& property) const {
 }
 
 const Material* MaterialDatabase::find(const std::string& name) const {
-  const std::string key = normalise(name);
+  // The database's one name rule (formats::same_material_name), as tfmb-heat resolves names.
   for (const Material& m : materials) {
-    if (normalise(m.name) == key) return &m;
+    if (formats::same_material_name(m.name, name)) return &m;
   }
   for (const Material& m : materials) {
     for (const auto& alias : m.aliases) {
-      if (normalise(alias) == key) return &m;
+      if (formats::same_material_name(alias, name)) return &m;
     }
   }
   return nullptr;
