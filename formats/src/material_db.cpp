@@ -15,7 +15,8 @@ namespace {
 std::string normalise(const std::string& name) {
   std::string out;
   for (char c : name) {
-    if (c == ' ' || c == '-' || c == '_') continue;
+    if (c == ' ' || c == '-' || c == '_')
+      continue;
     out.push_back(static_cast<char>(std::tolower(static_cast<unsigned char>(c))));
   }
   return out;
@@ -23,14 +24,18 @@ std::string normalise(const std::string& name) {
 
 }  // namespace
 
-bool same_material_name(const std::string& a, const std::string& b) { return normalise(a) == normalise(b); }
+bool same_material_name(const std::string& a, const std::string& b) {
+  return normalise(a) == normalise(b);
+}
 
 const DatabaseMaterial* MaterialDatabase::find(const std::string& name) const {
   for (const DatabaseMaterial& m : materials)
-    if (same_material_name(m.name, name)) return &m;
+    if (same_material_name(m.name, name))
+      return &m;
   for (const DatabaseMaterial& m : materials)
     for (const auto& alias : m.aliases)
-      if (same_material_name(alias, name)) return &m;
+      if (same_material_name(alias, name))
+        return &m;
   return nullptr;
 }
 
@@ -38,7 +43,8 @@ MaterialDatabase read_material_db(const std::filesystem::path& file) {
   const h5::Reader r = open_checked(file, "material-db");
   MaterialDatabase db;
   db.source = file;
-  if (r.has_attr("/", "default_titanium")) db.default_titanium = r.attr_string("/", "default_titanium");
+  if (r.has_attr("/", "default_titanium"))
+    db.default_titanium = r.attr_string("/", "default_titanium");
   for (const std::string& name : r.children("/materials")) {
     const std::string g = "/materials/" + name;
     DatabaseMaterial m;
@@ -48,7 +54,8 @@ MaterialDatabase read_material_db(const std::filesystem::path& file) {
     m.missing = r.attr_string(g, "missing");
     std::stringstream aliases(r.attr_string(g, "aliases"));
     for (std::string alias; std::getline(aliases, alias, ',');)
-      if (!alias.empty()) m.aliases.push_back(alias);
+      if (!alias.empty())
+        m.aliases.push_back(alias);
     for (const std::string& property : r.children(g)) {
       const std::string p = g + "/" + property;
       MaterialProperty t;
@@ -56,7 +63,8 @@ MaterialDatabase read_material_db(const std::filesystem::path& file) {
       t.value = r.read_vector(p + "/value", t.temperature.size());
       t.units = r.attr_string(p + "/value", "units");
       t.exactness = r.attr_string(p, "exactness");
-      if (t.temperature.empty()) r.fail(p + "/temperature", "empty table");
+      if (t.temperature.empty())
+        r.fail(p + "/temperature", "empty table");
       for (std::size_t i = 1; i < t.temperature.size(); ++i)
         if (!(t.temperature[i] > t.temperature[i - 1]))
           r.fail(p + "/temperature", "not strictly increasing at row " + std::to_string(i));

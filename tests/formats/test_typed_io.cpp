@@ -131,7 +131,8 @@ TEST(TypedIo, MaterialNamesResolveByOneRule) {
   const formats::DatabaseMaterial& first = db.materials.front();
   std::string spelled = first.name;
   for (char& c : spelled)
-    if (c == '-') c = '_';
+    if (c == '-')
+      c = '_';
   EXPECT_EQ(db.find(spelled), &first);
   EXPECT_EQ(db.find("no such material"), nullptr);
 }

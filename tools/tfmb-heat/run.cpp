@@ -50,7 +50,8 @@ SolidMesh to_solid_mesh(const formats::Mesh& in) {
 }
 
 // A property table of a database material as the conduction solver takes it.
-PropertyTable read_property(const formats::MaterialDatabase& db, const formats::DatabaseMaterial& material,
+PropertyTable read_property(const formats::MaterialDatabase& db,
+                            const formats::DatabaseMaterial& material,
                             const std::string& property) {
   const std::string group = "/materials/" + material.name + "/" + property;
   const auto table = material.properties.find(property);
@@ -64,9 +65,11 @@ PropertyTable read_property(const formats::MaterialDatabase& db, const formats::
 }
 
 // Steady runs need only the conductivity; density and specific heat are read when present.
-PropertyTable read_optional_property(const formats::MaterialDatabase& db, const formats::DatabaseMaterial& material,
+PropertyTable read_optional_property(const formats::MaterialDatabase& db,
+                                     const formats::DatabaseMaterial& material,
                                      const std::string& property) {
-  if (!material.properties.count(property)) return {};
+  if (!material.properties.count(property))
+    return {};
   return read_property(db, material, property);
 }
 

@@ -24,7 +24,8 @@ MaterialDatabase read_material_db(const std::filesystem::path& file) {
     m.reference_temperature = entry.reference_temperature;
     m.missing = entry.missing;
     for (const auto& [property, table] : entry.properties)
-      m.properties[property] = {property, table.units, table.temperature, table.value, table.exactness};
+      m.properties[property] = {property, table.units, table.temperature, table.value,
+                                table.exactness};
     db.materials.push_back(std::move(m));
   }
   return db;

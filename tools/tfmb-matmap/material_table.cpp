@@ -48,11 +48,13 @@ const PropertyTable& Material::require(const std::string& property) const {
 const Material* MaterialDatabase::find(const std::string& name) const {
   // The database's one name rule (formats::same_material_name), as tfmb-heat resolves names.
   for (const Material& m : materials) {
-    if (formats::same_material_name(m.name, name)) return &m;
+    if (formats::same_material_name(m.name, name))
+      return &m;
   }
   for (const Material& m : materials) {
     for (const auto& alias : m.aliases) {
-      if (formats::same_material_name(alias, name)) return &m;
+      if (formats::same_material_name(alias, name))
+        return &m;
     }
   }
   return nullptr;

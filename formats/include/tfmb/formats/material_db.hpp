@@ -15,9 +15,9 @@
 namespace tfmb::formats {
 
 struct MaterialProperty {
-  std::string units;               // of the values
-  std::string exactness;           // least trustworthy point: exact_table ... derived
-  std::vector<double> temperature; // [K] strictly increasing, at least one point
+  std::string units;                // of the values
+  std::string exactness;            // least trustworthy point: exact_table ... derived
+  std::vector<double> temperature;  // [K] strictly increasing, at least one point
   std::vector<double> value;
 };
 
