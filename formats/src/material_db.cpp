@@ -22,6 +22,22 @@ std::string normalise(const std::string& name) {
   return out;
 }
 
+// The physical range of a property's values (material-db.md): every property but the thermal
+// expansion coefficient is positive, the Poisson ratio below 1/2. A negative conductivity or
+// modulus would pass every later stage and give a result with the wrong sign.
+void check_values(const h5::Reader& r, const std::string& path, const std::string& property,
+                  const std::vector<double>& values) {
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const double v = values[i];
+    const bool ok = property == "thermal_expansion" ? true
+                    : property == "poisson_ratio"   ? (v > 0.0 && v < 0.5)
+                                                    : v > 0.0;
+    if (!ok)
+      r.fail(path, "row " + std::to_string(i) + ": " + std::to_string(v) + " is not a physical " + property +
+                       (property == "poisson_ratio" ? " (0 < nu < 0.5)" : " (must be positive)"));
+  }
+}
+
 }  // namespace
 
 bool same_material_name(const std::string& a, const std::string& b) {
@@ -68,6 +84,7 @@ MaterialDatabase read_material_db(const std::filesystem::path& file) {
       for (std::size_t i = 1; i < t.temperature.size(); ++i)
         if (!(t.temperature[i] > t.temperature[i - 1]))
           r.fail(p + "/temperature", "not strictly increasing at row " + std::to_string(i));
+      check_values(r, p + "/value", property, t.value);
       m.properties[property] = std::move(t);
     }
     db.materials.push_back(std::move(m));

@@ -2,6 +2,7 @@
 // schema_solidmesh.cpp).
 #include "tfmb/formats/solidmesh.hpp"
 
+#include <algorithm>
 #include <limits>
 
 #include "tfmb/common/h5.hpp"
@@ -43,6 +44,17 @@ SolidMesh read_solidmesh(const std::filesystem::path& file) {
       r.read_index_vector("/link/cell_element", cells, 0, std::numeric_limits<std::int64_t>::max());
   solid.point_thickness_coordinate =
       r.read_vector("/link/point_thickness_coordinate", solid.mesh.node_count());
+  // The wall has a thickness: its nodes lie on both sides of the reference line. All zero (or
+  // all of one sign) would make every through-thickness temperature difference zero.
+  double lowest = 0.0, highest = 0.0;
+  for (double z : solid.point_thickness_coordinate) {
+    lowest = std::min(lowest, z);
+    highest = std::max(highest, z);
+  }
+  if (!(lowest < 0.0 && highest > 0.0))
+    r.fail("/link/point_thickness_coordinate", "does not span the wall thickness (from " +
+                                                   std::to_string(lowest) + " to " +
+                                                   std::to_string(highest) + " m)");
   return solid;
 }
 

@@ -2,11 +2,14 @@
 // checks the schema cannot make are made (one located line per problem).
 #include <gtest/gtest.h>
 
+#include <hdf5.h>
+
 #include <filesystem>
 
 #include "tfmb/common/errors.hpp"
 #include "tfmb/formats/loads.hpp"
 #include "tfmb/formats/material_db.hpp"
+#include "tfmb/formats/solidmesh.hpp"
 #include "tfmb/formats/materials.hpp"
 
 namespace fs = std::filesystem;
@@ -135,4 +138,54 @@ TEST(TypedIo, MaterialNamesResolveByOneRule) {
       c = '_';
   EXPECT_EQ(db.find(spelled), &first);
   EXPECT_EQ(db.find("no such material"), nullptr);
+}
+
+// A database with a negative Young's modulus or conductivity passed every stage before; the
+// reader refuses it with the row (a copy of the project's database with one value changed).
+TEST(TypedIo, AMaterialDatabaseWithANegativeModulusIsRefused) {
+  const fs::path copy = scratch("materials-db-negative.h5");
+  fs::copy_file(fs::path(TFMB_SOURCE_DIR) / "data" / "materials-db.h5", copy,
+                fs::copy_options::overwrite_existing);
+  {
+    const hid_t file = H5Fopen(copy.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    ASSERT_GE(file, 0);
+    const hid_t dataset = H5Dopen2(file, "/materials/Ti-6Al-4V/youngs_modulus/value", H5P_DEFAULT);
+    ASSERT_GE(dataset, 0);
+    const hid_t space = H5Dget_space(dataset);
+    std::vector<double> values(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)));
+    H5Dread(dataset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
+    values[1] = -values[1];
+    H5Dwrite(dataset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
+    H5Sclose(space);
+    H5Dclose(dataset);
+    H5Fclose(file);
+  }
+  try {
+    formats::read_material_db(copy);
+    FAIL() << "a negative Young's modulus was read";
+  } catch (const BadInput& e) {
+    EXPECT_NE(std::string(e.what()).find("/materials/Ti-6Al-4V/youngs_modulus/value: row 1"), std::string::npos)
+        << e.what();
+  }
+}
+
+// A solid mesh whose nodes all sit on the reference line (through-thickness coordinate 0) gave a
+// through-thickness temperature difference of 0 instead of refusing the file.
+TEST(TypedIo, ASolidMeshWithoutThicknessIsRefused) {
+  formats::SolidMesh solid;
+  solid.header.creator = "test";
+  solid.mesh.points.resize(4, 2);
+  solid.mesh.points << 0.0, -0.005, 1.0, -0.005, 1.0, 0.005, 0.0, 0.005;
+  solid.mesh.quads.resize(1, 4);
+  solid.mesh.quads << 0, 1, 2, 3;
+  solid.flap_names = {"upper"};
+  solid.cell_flap = {0};
+  solid.cell_element = {0};
+  solid.point_thickness_coordinate = {-0.005, -0.005, 0.005, 0.005};
+  const fs::path file = scratch("solidmesh.h5");
+  formats::write_solidmesh(file, solid, {});
+  EXPECT_EQ(formats::read_solidmesh(file).point_thickness_coordinate[2], 0.005);
+  solid.point_thickness_coordinate = {0.0, 0.0, 0.0, 0.0};
+  formats::write_solidmesh(file, solid, {});
+  EXPECT_THROW(formats::read_solidmesh(file), BadInput);
 }
