@@ -33,7 +33,8 @@ void check_values(const h5::Reader& r, const std::string& path, const std::strin
                     : property == "poisson_ratio"   ? (v > 0.0 && v < 0.5)
                                                     : v > 0.0;
     if (!ok)
-      r.fail(path, "row " + std::to_string(i) + ": " + std::to_string(v) + " is not a physical " + property +
+      r.fail(path, "row " + std::to_string(i) + ": " + std::to_string(v) + " is not a physical " +
+                       property +
                        (property == "poisson_ratio" ? " (0 < nu < 0.5)" : " (must be positive)"));
   }
 }

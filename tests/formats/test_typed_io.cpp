@@ -9,8 +9,8 @@
 #include "tfmb/common/errors.hpp"
 #include "tfmb/formats/loads.hpp"
 #include "tfmb/formats/material_db.hpp"
-#include "tfmb/formats/solidmesh.hpp"
 #include "tfmb/formats/materials.hpp"
+#include "tfmb/formats/solidmesh.hpp"
 
 namespace fs = std::filesystem;
 using namespace tfmb;
@@ -164,7 +164,8 @@ TEST(TypedIo, AMaterialDatabaseWithANegativeModulusIsRefused) {
     formats::read_material_db(copy);
     FAIL() << "a negative Young's modulus was read";
   } catch (const BadInput& e) {
-    EXPECT_NE(std::string(e.what()).find("/materials/Ti-6Al-4V/youngs_modulus/value: row 1"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("/materials/Ti-6Al-4V/youngs_modulus/value: row 1"),
+              std::string::npos)
         << e.what();
   }
 }

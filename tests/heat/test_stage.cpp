@@ -393,7 +393,8 @@ TEST(HeatStage, BadInputsExitThreeWithClearMessages) {
     write_inputs(c);
     const auto message = bad_input_message(c);
     // The database reader refuses it (formats/material_db: one check for every stage).
-    EXPECT_NE(message.find("/materials/alloy/conductivity/value: row 0"), std::string::npos) << message;
+    EXPECT_NE(message.find("/materials/alloy/conductivity/value: row 0"), std::string::npos)
+        << message;
     EXPECT_NE(message.find("must be positive"), std::string::npos) << message;
   }
   {
