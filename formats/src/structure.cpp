@@ -183,8 +183,7 @@ Structure read_structure(const std::filesystem::path& file) {
   s.header = read_header(r);
   s.analysis = r.attr_string("/", "analysis");
   s.converged = r.attr_i64("/", "converged") == 1;
-  const h5::MatrixXdR points = r.read_matrix("/beam/points", std::nullopt, 3);
-  const auto n = static_cast<std::size_t>(points.rows());
+  const auto n = static_cast<std::size_t>(r.info("/beam/points").shape.at(0));
   s.points = detail::read_rows<3>(r, "/beam/points", n);
   const h5::MatrixXiR segments =
       r.read_index_matrix("/beam/segments", std::nullopt, 2, 0, static_cast<std::int64_t>(n));

@@ -18,9 +18,12 @@ using namespace tfmb;
 namespace {
 
 input::Model load_case(const std::string& name, const std::vector<std::string>& overrides = {}) {
-  const auto spec = input::read_case(std::filesystem::path(TFMB_SOURCE_DIR) / "cases" / name / "case.toml", overrides);
+  const auto spec = input::read_case(
+      std::filesystem::path(TFMB_SOURCE_DIR) / "cases" / name / "case.toml", overrides);
   std::vector<input::Curve> curves;
-  if (!spec.geometry.file.empty()) curves = input::read_geometry(spec.geometry.file, spec.geometry.scale, spec.geometry.curve_samples);
+  if (!spec.geometry.file.empty())
+    curves =
+        input::read_geometry(spec.geometry.file, spec.geometry.scale, spec.geometry.curve_samples);
   static std::ostringstream sink;
   const Logger log("test", Verbosity::quiet, sink);
   return input::build_model(spec, curves, log);
@@ -48,14 +51,16 @@ TEST(FlowMesh, WallLayersHaveTheCaseFirstHeightAndGrowth) {
   double nearest = 1e300;
   for (Eigen::Index q = 0; q < m.quads.rows(); ++q) {
     for (int k = 0; k < 4; ++k) {
-      if (m.quads(q, k) != wall_node) continue;
+      if (m.quads(q, k) != wall_node)
+        continue;
       for (int j : {(k + 1) % 4, (k + 3) % 4}) {
         const double d = (m.points.row(m.quads(q, j)) - m.points.row(wall_node)).norm();
         nearest = std::min(nearest, d);
       }
     }
   }
-  // Mitred normals lengthen the first edge by 1/cos(half the wall turn), < 0.1 % on this smooth wall.
+  // Mitred normals lengthen the first edge by 1/cos(half the wall turn), < 0.1 % on this smooth
+  // wall.
   EXPECT_NEAR(nearest, report.first_layer_height, 1e-3 * report.first_layer_height);
   // Every boundary of the model's loop is in the mesh with its kind.
   for (const auto& piece : model.domain.boundaries) {
@@ -92,7 +97,8 @@ TEST(SolidMesh, EveryCellLinksToItsBeamElement) {
     ASSERT_LT(e, flap.elements);
     // The cell centre projects onto the reference line within element e's arc-length range.
     Eigen::Vector2d centre = Eigen::Vector2d::Zero();
-    for (int k = 0; k < 4; ++k) centre += m.points.row(m.quads(static_cast<Eigen::Index>(c), k)).transpose() / 4.0;
+    for (int k = 0; k < 4; ++k)
+      centre += m.points.row(m.quads(static_cast<Eigen::Index>(c), k)).transpose() / 4.0;
     double s = 0.0;
     geometry::distance_to(flap.reference_geometry, centre, &s);
     const double element_length = geometry::length(flap.reference_geometry) / flap.elements;
@@ -109,14 +115,15 @@ namespace {
 // Writes a walldisp file rotating the walls of one flap rigidly about `centre` by `angle`, with
 // x0 the mesh's own wall nodes (with their ids, as tfmb-loads --mesh writes); or, with `shift`,
 // translating them.
-void write_rotation(const formats::Mesh& m, const std::string& flap, const Eigen::Vector2d& centre, double angle,
-                    const Eigen::Vector2d& shift, const std::filesystem::path& file) {
+void write_rotation(const formats::Mesh& m, const std::string& flap, const Eigen::Vector2d& centre,
+                    double angle, const Eigen::Vector2d& shift, const std::filesystem::path& file) {
   h5::Writer w(file);
   formats::write_header(w, "walldisp", {});
   w.set_attr("/", "wall_source", "flowmesh");
   const Eigen::Matrix2d rotation = Eigen::Rotation2D<double>(angle).toRotationMatrix();
   for (const auto& [name, b] : m.boundaries) {
-    if (b.flap != flap) continue;
+    if (b.flap != flap)
+      continue;
     h5::MatrixXdR x0(b.edges.rows() + 1, 2), u(b.edges.rows() + 1, 2);
     std::vector<std::int64_t> nodes;
     for (Eigen::Index e = 0; e <= b.edges.rows(); ++e) {
@@ -147,11 +154,12 @@ TEST(Deform, RigidTwoDegreeRotationOfOneFlapKeepsCellsValidAndWallsExact) {
   const auto dir = test::scratch_dir("deform-rotation");
   Eigen::Vector2d hinge = Eigen::Vector2d::Zero();
   for (const auto& j : model.joints) {
-    if (j.name == "upper_23") hinge = j.point;
+    if (j.name == "upper_23")
+      hinge = j.point;
   }
   const double angle = 2.0 * M_PI / 180.0;
   write_rotation(m, "upper_3", hinge, angle, Eigen::Vector2d::Zero(), dir / "walldisp.h5");
-  const auto walls = mesh::read_walldisp(dir / "walldisp.h5");
+  const auto walls = formats::read_walldisp(dir / "walldisp.h5").walls;
   ASSERT_EQ(walls.size(), 3u);  // inner, outer, end
   mesh::DeformReport deform_report;
   const auto moved = mesh::deform_mesh(m, walls, deform_report);
@@ -163,8 +171,10 @@ TEST(Deform, RigidTwoDegreeRotationOfOneFlapKeepsCellsValidAndWallsExact) {
   double worst = 0.0;
   std::set<std::int64_t> nodes;
   for (const auto& [name, b] : m.boundaries) {
-    if (b.flap != "upper_3") continue;
-    for (Eigen::Index e = 0; e < b.edges.rows(); ++e) nodes.insert({b.edges(e, 0), b.edges(e, 1)});
+    if (b.flap != "upper_3")
+      continue;
+    for (Eigen::Index e = 0; e < b.edges.rows(); ++e)
+      nodes.insert({b.edges(e, 0), b.edges(e, 1)});
   }
   for (auto node : nodes) {
     const Eigen::Vector2d p = m.points.row(node).transpose();
@@ -192,9 +202,10 @@ TEST(Deform, ModelWallDisplacementMovesTheWholeFlapIncludingItsEndFace) {
   const double angle = 2.0 * M_PI / 180.0;
   const Eigen::Matrix2d rotation = Eigen::Rotation2D<double>(angle).toRotationMatrix();
   std::vector<mesh::WallDisplacement> walls;
-  for (const auto& [side, line] : {std::pair{"inner", &flap->inner_wall}, std::pair{"outer", &flap->outer_wall}}) {
+  for (const auto& [side, line] :
+       {std::pair{"inner", &flap->inner_wall}, std::pair{"outer", &flap->outer_wall}}) {
     mesh::WallDisplacement w;
-    w.boundary = std::string("upper_3_") + side;
+    w.name = std::string("upper_3_") + side;
     w.flap = "upper_3";
     for (const auto& p : *line) {
       w.x0.push_back(p);
@@ -219,16 +230,22 @@ TEST(Deform, ModelWallDisplacementMovesTheWholeFlapIncludingItsEndFace) {
 TEST(Deform, FoldingDisplacementIsRefusedWithTheAdmissibleFraction) {
   const auto dir = test::scratch_dir("deform-fold");
   const auto model_file = dir / "model.h5";
-  auto r = test::run_tool("tfmb-input " + std::string(TFMB_SOURCE_DIR) + "/cases/simple-nozzle/case.toml -o " +
-                              model_file.string(), dir);
+  auto r = test::run_tool("tfmb-input " + std::string(TFMB_SOURCE_DIR) +
+                              "/cases/simple-nozzle/case.toml -o " + model_file.string(),
+                          dir);
   ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
-  r = test::run_tool("tfmb-mesh flow " + model_file.string() + " -o " + (dir / "flow.h5").string() + " --scale 4", dir);
+  r = test::run_tool(
+      "tfmb-mesh flow " + model_file.string() + " -o " + (dir / "flow.h5").string() + " --scale 4",
+      dir);
   ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
   const auto m = formats::read_mesh(h5::Reader(dir / "flow.h5"));
-  // Push the last upper flap 5 cm towards the axis: the cells at its joint with the fixed flap fold.
-  write_rotation(m, "upper_3", Eigen::Vector2d::Zero(), 0.0, Eigen::Vector2d(0.0, -0.05), dir / "walldisp.h5");
-  r = test::run_tool("tfmb-mesh deform " + (dir / "flow.h5").string() + " " + (dir / "walldisp.h5").string() +
-                         " -o " + (dir / "flow2.h5").string(), dir);
+  // Push the last upper flap 5 cm towards the axis: the cells at its joint with the fixed flap
+  // fold.
+  write_rotation(m, "upper_3", Eigen::Vector2d::Zero(), 0.0, Eigen::Vector2d(0.0, -0.05),
+                 dir / "walldisp.h5");
+  r = test::run_tool("tfmb-mesh deform " + (dir / "flow.h5").string() + " " +
+                         (dir / "walldisp.h5").string() + " -o " + (dir / "flow2.h5").string(),
+                     dir);
   EXPECT_EQ(r.exit_code, 3) << r.stderr_text;
   const std::string key = "largest admissible fraction of this displacement is ";
   const auto at = r.stderr_text.find(key);
@@ -238,17 +255,19 @@ TEST(Deform, FoldingDisplacementIsRefusedWithTheAdmissibleFraction) {
   EXPECT_LT(fraction, 1.0);
   EXPECT_FALSE(std::filesystem::exists(dir / "flow2.h5")) << "no output on refusal";
   // The reported fraction is the boundary: slightly less deforms, slightly more is refused.
-  const auto walls = mesh::read_walldisp(dir / "walldisp.h5");
+  const auto walls = formats::read_walldisp(dir / "walldisp.h5").walls;
   auto scaled = [&](double f) {
     auto w = walls;
     for (auto& wall : w) {
-      for (auto& u : wall.displacement) u *= f;
+      for (auto& u : wall.displacement)
+        u *= f;
     }
     return w;
   };
   mesh::DeformReport report;
   EXPECT_NO_THROW(mesh::deform_mesh(m, scaled(0.99 * fraction), report));
-  EXPECT_THROW(mesh::deform_mesh(m, scaled(std::min(1.0, 1.01 * fraction)), report), tfmb::BadInput);
+  EXPECT_THROW(mesh::deform_mesh(m, scaled(std::min(1.0, 1.01 * fraction)), report),
+               tfmb::BadInput);
 }
 
 TEST(Geometry, NparcChannelWallFollowsTheExactAreaLaw) {
@@ -264,7 +283,8 @@ TEST(Geometry, NparcChannelWallFollowsTheExactAreaLaw) {
   double worst = 0.0;
   for (Eigen::Index e = 0; e < wall.edges.rows(); ++e) {
     const double x = m.points(wall.edges(e, 0), 0) / inch, y = m.points(wall.edges(e, 0), 1) / inch;
-    const double area = x < 5.0 ? 1.75 - 0.75 * std::cos((0.2 * x - 1.0) * M_PI) : 1.25 - 0.25 * std::cos((0.2 * x - 1.0) * M_PI);
+    const double area = x < 5.0 ? 1.75 - 0.75 * std::cos((0.2 * x - 1.0) * M_PI)
+                                : 1.25 - 0.25 * std::cos((0.2 * x - 1.0) * M_PI);
     worst = std::max(worst, std::abs(y - area));
   }
   EXPECT_LT(worst, 1e-4);
@@ -279,9 +299,12 @@ TEST(Geometry, NasaB1ThroatAndExitHeights) {
   const auto model = load_case("nasa-2dcd");
   double throat = 1e300, exit_height = 0.0;
   for (const auto& b : model.domain.boundaries) {
-    if (b.flap.rfind("upper", 0) != 0 || b.side != "inner") continue;
-    for (const auto& p : b.points) throat = std::min(throat, p.y());
-    if (b.flap == "upper_divergent") exit_height = b.points.front().y();  // loop runs exit -> throat
+    if (b.flap.rfind("upper", 0) != 0 || b.side != "inner")
+      continue;
+    for (const auto& p : b.points)
+      throat = std::min(throat, p.y());
+    if (b.flap == "upper_divergent")
+      exit_height = b.points.front().y();  // loop runs exit -> throat
   }
   EXPECT_NEAR(throat, 0.0137, 1e-6);
   EXPECT_NEAR(exit_height, 0.0246, 1e-7);
@@ -304,7 +327,8 @@ TEST(FlowMesh, CellsPerCircleRefinesTheThroatArcOnly) {
     const auto& b = m.boundaries.at("upper_divergent_inner");
     std::set<double> xs;
     for (Eigen::Index e = 0; e < b.edges.rows(); ++e) {
-      for (int k = 0; k < 2; ++k) xs.insert(m.points(b.edges(e, k), 0));
+      for (int k = 0; k < 2; ++k)
+        xs.insert(m.points(b.edges(e, k), 0));
     }
     return std::vector<double>(xs.begin(), xs.end());
   };
@@ -338,7 +362,8 @@ TEST(FlowMesh, EndCellsResolveTheFlapEndFaces) {
     std::size_t fewest = 1000000;
     int faces = 0;
     for (const auto& [name, b] : m.boundaries) {
-      if (name.size() < 4 || name.compare(name.size() - 4, 4, "_end") != 0) continue;
+      if (name.size() < 4 || name.compare(name.size() - 4, 4, "_end") != 0)
+        continue;
       fewest = std::min(fewest, static_cast<std::size_t>(b.edges.rows()));
       ++faces;
     }
@@ -364,8 +389,10 @@ TEST(FlowMesh, LayersStopBeforeTheyFoldOnAConcaveWall) {
   EXPECT_LT(report.boundary_layers, model.mesh.max_layers);
   EXPECT_GT(report.quality.min_angle, 10.0);
   for (Eigen::Index q = 0; q < m.quads.rows(); ++q) {
-    const Eigen::Vector2d a = m.points.row(m.quads(q, 0)).head<2>(), b = m.points.row(m.quads(q, 1)).head<2>(),
-                          c = m.points.row(m.quads(q, 2)).head<2>(), d = m.points.row(m.quads(q, 3)).head<2>();
+    const Eigen::Vector2d a = m.points.row(m.quads(q, 0)).head<2>(),
+                          b = m.points.row(m.quads(q, 1)).head<2>(),
+                          c = m.points.row(m.quads(q, 2)).head<2>(),
+                          d = m.points.row(m.quads(q, 3)).head<2>();
     const double area = 0.5 * ((c - a).x() * (d - b).y() - (c - a).y() * (d - b).x());
     ASSERT_GT(area, 0.0) << "quad " << q;
   }

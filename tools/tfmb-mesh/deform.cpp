@@ -78,12 +78,12 @@ void prescribe_named_nodes(const std::vector<WallDisplacement>& walls, const Nod
     for (std::size_t k = 0; k < w.nodes.size(); ++k) {
       const auto node = w.nodes[k];
       if (node >= static_cast<std::int64_t>(n)) {
-        throw BadInput("walldisp: /walls/" + w.boundary + "/node: node " + std::to_string(node) +
+        throw BadInput("walldisp: /walls/" + w.name + "/node: node " + std::to_string(node) +
                        " is not in the flow mesh (" + std::to_string(n) + " nodes)");
       }
       const double d = (nodes.x[static_cast<std::size_t>(node)] - w.x0[k]).norm();
       if (d > nodes.tight + 1e-6 * nodes.extent) {
-        throw BadInput("walldisp: /walls/" + w.boundary + "/x0 row " + std::to_string(k) + " is " +
+        throw BadInput("walldisp: /walls/" + w.name + "/x0 row " + std::to_string(k) + " is " +
                        text::format_number(d) + " m from flow-mesh node " + std::to_string(node) +
                        ": computed for another mesh");
       }
@@ -96,12 +96,12 @@ void prescribe_named_nodes(const std::vector<WallDisplacement>& walls, const Nod
 // walls are matched to by flap (model walls such as <flap>_<side>).
 void check_wall_names(const Mesh& mesh, const std::vector<WallDisplacement>& walls) {
   for (const auto& w : walls) {
-    auto it = mesh.boundaries.find(w.boundary);
+    auto it = mesh.boundaries.find(w.name);
     if (it == mesh.boundaries.end() && (w.flap.empty() || w.nodes.size())) {
-      throw BadInput("walldisp: boundary '" + w.boundary + "' is not in the flow mesh");
+      throw BadInput("walldisp: boundary '" + w.name + "' is not in the flow mesh");
     }
     if (it != mesh.boundaries.end() && !is_wall(it->second)) {
-      throw BadInput("walldisp: boundary '" + w.boundary + "' is a " + it->second.kind +
+      throw BadInput("walldisp: boundary '" + w.name + "' is a " + it->second.kind +
                      " boundary, not a wall");
     }
   }
@@ -168,7 +168,7 @@ WallCurves curves_of_wall(const std::string& name, const formats::Boundary& wall
   for (const auto& w : walls) {
     if (!w.nodes.empty())
       continue;
-    if (w.boundary == name)
+    if (w.name == name)
       curves.same_name.push_back(&w);
     else if (!wall.flap.empty() && w.flap == wall.flap)
       curves.same_flap.push_back(&w);
@@ -336,13 +336,6 @@ BadInput inverted_cells_error(const Mesh& mesh, const Mesh& moved, const std::ve
 }
 
 }  // namespace
-
-std::vector<WallDisplacement> read_walldisp(const std::filesystem::path& file) {
-  std::vector<WallDisplacement> walls;
-  for (const formats::WallDisplacement& in : formats::read_walldisp(file).walls)
-    walls.push_back({in.name, in.flap, in.nodes, in.x0, in.displacement});
-  return walls;
-}
 
 // The phases: the boundary nodes' displacements (named nodes, then the walls by curve, then the
 // other boundaries fixed), the interpolation inside, and the validity check of the moved mesh.

@@ -11,6 +11,7 @@
 #include "tfmb/common/log.hpp"
 #include "tfmb/formats/files.hpp"
 #include "tfmb/formats/model.hpp"
+#include "tfmb/formats/walldisp.hpp"
 
 namespace tfmb::mesh {
 
@@ -63,14 +64,9 @@ struct SolidLink {
 Mesh build_solid_mesh(const Model& model, SolidLink& link);
 
 // --- deformation ---------------------------------------------------------------------------
-struct WallDisplacement {
-  std::string boundary;  // a flow-mesh boundary name, or <flap>_<side> of the model
-  std::string flap;
-  std::vector<std::int64_t> nodes;  // flow-mesh node of each point (empty: points of the model)
-  Polyline x0;                      // [m]
-  std::vector<Eigen::Vector2d> displacement;  // [m]
-};
-std::vector<WallDisplacement> read_walldisp(const std::filesystem::path& file);
+// A wall's displacement as walldisp.h5 gives it (formats/walldisp.hpp): `name` is a flow-mesh
+// boundary or <flap>_<side> of the model; `nodes` empty when the points are the model's.
+using formats::WallDisplacement;
 struct DeformReport {
   Quality quality;
   double admissible_fraction = 1.0;  // largest fraction of the displacement keeping cells valid

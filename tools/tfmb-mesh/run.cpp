@@ -4,6 +4,7 @@
 #include "tfmb/common/text.hpp"
 #include "tfmb/formats/schema.hpp"
 #include "tfmb/formats/solidmesh.hpp"
+#include "tfmb/formats/walldisp.hpp"
 
 namespace tfmb::mesh {
 namespace {
@@ -99,7 +100,7 @@ int run(const Options& options, const Logger& log) {
     const h5::Reader file = formats::open_checked(options.input, "flowmesh");
     const Mesh mesh = formats::read_mesh(file);
     const formats::Header header_in = formats::read_header(file);
-    const auto walls = read_walldisp(options.walldisp);
+    const auto walls = formats::read_walldisp(options.walldisp).walls;
     DeformReport report;
     const Mesh moved = deform_mesh(mesh, walls, report);
     {
