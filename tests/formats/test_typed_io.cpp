@@ -7,10 +7,12 @@
 #include <filesystem>
 
 #include "tfmb/common/errors.hpp"
+#include "tfmb/formats/flowmesh.hpp"
 #include "tfmb/formats/loads.hpp"
 #include "tfmb/formats/material_db.hpp"
 #include "tfmb/formats/materials.hpp"
 #include "tfmb/formats/solidmesh.hpp"
+#include "tfmb/formats/strain.hpp"
 
 namespace fs = std::filesystem;
 using namespace tfmb;
@@ -189,4 +191,83 @@ TEST(TypedIo, ASolidMeshWithoutThicknessIsRefused) {
   solid.point_thickness_coordinate = {0.0, 0.0, 0.0, 0.0};
   formats::write_solidmesh(file, solid, {});
   EXPECT_THROW(formats::read_solidmesh(file), BadInput);
+}
+
+// The flow mesh's quality report round-trips with what is absent staying absent (an imported
+// mesh carries none), and a mesh without boundaries is refused (nothing to apply conditions to).
+TEST(TypedIo, FlowMeshRoundTripAndAMeshWithoutBoundariesIsRefused) {
+  formats::FlowMesh mesh;
+  mesh.header.creator = "test";
+  mesh.mesh.points.resize(4, 2);
+  mesh.mesh.points << 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0;
+  mesh.mesh.quads.resize(1, 4);
+  mesh.mesh.quads << 0, 1, 2, 3;
+  formats::Boundary wall;
+  wall.kind = "wall";
+  wall.flap = "upper";
+  wall.side = "inner";
+  wall.edges.resize(1, 2);
+  wall.edges << 2, 3;
+  mesh.mesh.boundaries["upper_inner"] = wall;
+  mesh.quality.min_angle = 90.0;
+  mesh.quality.boundary_layers = 3;
+  const fs::path file = scratch("flowmesh.h5");
+  formats::write_flowmesh(file, mesh, {});
+  const formats::FlowMesh back = formats::read_flowmesh(file);
+  EXPECT_EQ(back.mesh.points, mesh.mesh.points);
+  EXPECT_EQ(back.mesh.boundaries.at("upper_inner").side, "inner");
+  EXPECT_EQ(back.quality.min_angle, 90.0);
+  EXPECT_EQ(back.quality.boundary_layers, 3);
+  EXPECT_FALSE(back.quality.estimated_yplus.has_value());
+  EXPECT_EQ(back.source, file);
+  mesh.mesh.boundaries.clear();
+  formats::write_flowmesh(file, mesh, {});
+  EXPECT_THROW(formats::read_flowmesh(file), BadInput);
+}
+
+// What tfmb-strain writes reads back column by column; a worst flap that names no flap of the
+// file is refused (tfmb-plot would mark the worst margin nowhere).
+TEST(TypedIo, StrainRoundTripAndAWorstFlapThatIsNoFlapIsRefused) {
+  formats::Strain strain;
+  strain.header.creator = "test";
+  strain.mechanical_basis = "mechanical";
+  strain.worst_margin_total = -0.1;
+  strain.worst_margin_mechanical = 0.5;
+  strain.worst_margin_thermal = 2.0;
+  strain.worst_flap = "upper";
+  strain.worst_surface = "inner";
+  strain.worst_segment = 1;
+  strain.worst_position = {0.2, 0.1};
+  formats::StrainFlap flap;
+  flap.name = "upper";
+  flap.element = {0, 1};
+  flap.s = {0.05, 0.15};
+  flap.position = {{0.1, 0.1}, {0.2, 0.1}};
+  for (auto* column : {&flap.mechanical_inner, &flap.mechanical_outer, &flap.thermal_inner,
+                       &flap.thermal_outer, &flap.total_inner, &flap.total_outer, &flap.allowable,
+                       &flap.margin_mechanical, &flap.margin_thermal, &flap.margin_total})
+    *column = {1e-3, 2e-3};
+  flap.margin_total = {0.3, -0.1};
+  strain.flaps.push_back(flap);
+  formats::StrainWorst worst;
+  worst.flap = "upper";
+  worst.surface = "inner";
+  worst.segment = 1;
+  worst.element = 1;
+  worst.s = 0.15;
+  worst.position = {0.2, 0.1};
+  worst.total_strain = 2e-3;
+  worst.margin_total = -0.1;
+  strain.worst.push_back(worst);
+  const fs::path file = scratch("strain.h5");
+  formats::write_strain(file, strain, {});
+  const formats::Strain back = formats::read_strain(file);
+  EXPECT_EQ(back.worst_margin_total, -0.1);
+  EXPECT_EQ(back.flaps.at(0).margin_total, flap.margin_total);
+  EXPECT_EQ(back.flaps.at(0).position.at(1), flap.position.at(1));
+  EXPECT_EQ(back.worst.at(0).segment, 1);
+  EXPECT_EQ(back.worst_position, strain.worst_position);
+  strain.worst_flap = "lower";
+  formats::write_strain(file, strain, {});
+  EXPECT_THROW(formats::read_strain(file), BadInput);
 }

@@ -11,6 +11,7 @@
 #include "tfmb/common/text.hpp"
 #include "tfmb/formats/files.hpp"
 #include "tfmb/formats/flow.hpp"
+#include "tfmb/formats/flowmesh.hpp"
 #include "tfmb/formats/schema.hpp"
 
 namespace tfmb::flow {
@@ -26,12 +27,11 @@ struct LoadedMesh {
 };
 
 LoadedMesh load_mesh(const std::filesystem::path& file) {
-  const h5::Reader reader = formats::open_checked(file, "flowmesh");
+  formats::FlowMesh in = formats::read_flowmesh(file);
   LoadedMesh out;
-  const formats::Header header = formats::read_header(reader);
-  out.geometry = header.geometry == "axisymmetric" ? Geometry::axisymmetric : Geometry::planar;
-  out.depth = header.depth;
-  out.file_mesh = formats::read_mesh(reader);
+  out.geometry = in.header.geometry == "axisymmetric" ? Geometry::axisymmetric : Geometry::planar;
+  out.depth = in.header.depth;
+  out.file_mesh = std::move(in.mesh);
   const auto& fm = out.file_mesh;
   Mesh& m = out.mesh;
   m.points.resize(fm.node_count());
@@ -48,8 +48,8 @@ LoadedMesh load_mesh(const std::filesystem::path& file) {
   }
   for (const auto& [name, b] : fm.boundaries) {
     if (b.kind.rfind("solid_", 0) == 0) {
-      throw BadInput(file.string() + ": /mesh/boundaries/" + name + ": kind '" + b.kind +
-                     "' belongs to a solid mesh; give tfmb-flow the flow mesh");
+      in.fail("/mesh/boundaries/" + name,
+              "kind '" + b.kind + "' belongs to a solid mesh; give tfmb-flow the flow mesh");
     }
     BoundaryCurve c{name, {}};
     for (Eigen::Index r = 0; r < b.edges.rows(); ++r) {
@@ -61,7 +61,7 @@ LoadedMesh load_mesh(const std::filesystem::path& file) {
   try {
     check_mesh(m);
   } catch (const std::invalid_argument& e) {
-    throw BadInput(file.string() + ": " + e.what());
+    in.fail("/mesh", e.what());
   }
   return out;
 }

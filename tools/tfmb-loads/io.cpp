@@ -9,6 +9,7 @@
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
 #include "tfmb/formats/flow.hpp"
+#include "tfmb/formats/flowmesh.hpp"
 #include "tfmb/formats/loads.hpp"
 #include "tfmb/formats/model.hpp"
 #include "tfmb/formats/schema.hpp"
@@ -69,7 +70,7 @@ FlowTraces read_flow_traces(const std::filesystem::path& file,
   const formats::Flow flow = formats::read_flow(file);
   h5::MatrixXdR reference_points;
   if (!reference_mesh.empty()) {
-    reference_points = formats::read_mesh(formats::open_checked(reference_mesh, "flowmesh")).points;
+    reference_points = formats::read_flowmesh(reference_mesh).mesh.points;
     if (static_cast<std::size_t>(reference_points.rows()) != flow.mesh.node_count()) {
       flow.fail("/mesh/points", std::to_string(flow.mesh.node_count()) +
                                     " nodes, but the reference mesh " + reference_mesh.string() +
@@ -126,8 +127,18 @@ std::vector<MeshWall> read_mesh_walls(const std::filesystem::path& file) {
     const h5::Reader probe(file);
     probe.fail("/", "format 'tfmb/" + kind + "' has no flow mesh; give a flowmesh or flow file");
   }
-  const h5::Reader reader = formats::open_checked(file, kind);
-  const formats::Mesh mesh = formats::read_mesh(reader);
+  // Either kind carries the mesh block; each is read (and checked) by its own reader.
+  formats::ReadFrom source;
+  formats::Mesh mesh;
+  if (kind == "flow") {
+    formats::Flow flow = formats::read_flow(file);
+    source = flow;
+    mesh = std::move(flow.mesh);
+  } else {
+    formats::FlowMesh flow_mesh = formats::read_flowmesh(file);
+    source = flow_mesh;
+    mesh = std::move(flow_mesh.mesh);
+  }
   std::vector<MeshWall> walls;
   for (const auto& [name, boundary] : mesh.boundaries) {
     if (boundary.flap.empty()) continue;
@@ -140,7 +151,7 @@ std::vector<MeshWall> read_mesh_walls(const std::filesystem::path& file) {
     wall.nodes.push_back(e(0, 0));
     for (Eigen::Index k = 0; k < e.rows(); ++k) {
       if (e(k, 0) != wall.nodes.back()) {
-        reader.fail("/mesh/boundaries/" + name + "/edges",
+        source.fail("/mesh/boundaries/" + name + "/edges",
                     "edge " + std::to_string(k) + " does not continue the previous one");
       }
       wall.nodes.push_back(e(k, 1));

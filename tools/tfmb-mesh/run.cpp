@@ -2,7 +2,7 @@
 #include "tfmb/common/cli.hpp"
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/text.hpp"
-#include "tfmb/formats/schema.hpp"
+#include "tfmb/formats/flowmesh.hpp"
 #include "tfmb/formats/solidmesh.hpp"
 #include "tfmb/formats/walldisp.hpp"
 
@@ -14,10 +14,10 @@ std::string num(double v, int digits = 4) {
   return text::format_number(v, digits);
 }
 
-void write_quality(h5::Writer& w, const Quality& q) {
-  w.set_attr("/mesh", "min_angle", q.min_angle);
-  w.set_attr("/mesh", "max_aspect_ratio", q.max_aspect_ratio);
-  w.set_attr("/mesh", "min_cell_area", q.min_area);
+void set_quality(formats::MeshQualityReport& report, const Quality& q) {
+  report.min_angle = q.min_angle;
+  report.max_aspect_ratio = q.max_aspect_ratio;
+  report.min_cell_area = q.min_area;
 }
 
 std::string quality_text(const Quality& q) {
@@ -43,36 +43,29 @@ int run(const Options& options, const Logger& log) {
     fo.scale = options.scale;
     fo.algorithm = options.algorithm;
     FlowMeshReport report;
-    const Mesh mesh = build_flow_mesh(model, fo, report, log);
+    formats::FlowMesh out;
+    out.mesh = build_flow_mesh(model, fo, report, log);
     if (report.quality.invalid_cells > 0) {
       throw InternalError("flow mesh has " + std::to_string(report.quality.invalid_cells) +
                           " invalid cells");
     }
-    {
-      h5::Writer w(options.output);
-      formats::Header header;
-      header.creator = "tfmb-mesh " + cli::version();
-      header.depth = model.depth;
-      formats::write_header(w, "flowmesh", header);
-      formats::write_mesh(w, mesh);
-      write_quality(w, report.quality);
-      if (report.estimated_yplus)
-        w.set_attr("/mesh", "estimated_yplus", *report.estimated_yplus);
-      w.set_attr("/mesh", "first_layer_height", report.first_layer_height);
-      w.set_attr("/mesh", "boundary_layers", static_cast<std::int64_t>(report.boundary_layers));
-      formats::write_provenance(w, provenance(options, {options.input}));
-      w.commit();
-    }
-    formats::write_xdmf_sidecar(options.output);
+    out.header.creator = "tfmb-mesh " + cli::version();
+    out.header.depth = model.depth;
+    out.header.geometry = model.geometry;
+    set_quality(out.quality, report.quality);
+    out.quality.estimated_yplus = report.estimated_yplus;
+    out.quality.first_layer_height = report.first_layer_height;
+    out.quality.boundary_layers = static_cast<std::int64_t>(report.boundary_layers);
+    formats::write_flowmesh(options.output, out, provenance(options, {options.input}));
     log.info("quality: " + quality_text(report.quality) + ", " +
              std::to_string(report.boundary_layers) + " wall layers, first layer " +
              num(report.first_layer_height) + " m, estimated y+ " +
              (report.estimated_yplus ? num(*report.estimated_yplus)
                                      : std::string("not recorded in the model")));
-    log.summary("wrote " + options.output.string() + ": " + std::to_string(mesh.node_count()) +
-                " nodes, " + std::to_string(mesh.triangles.rows()) + " triangles, " +
-                std::to_string(mesh.quads.rows()) + " quads, " +
-                std::to_string(mesh.boundaries.size()) + " boundaries (" + num(clock.seconds(), 3) +
+    log.summary("wrote " + options.output.string() + ": " + std::to_string(out.mesh.node_count()) +
+                " nodes, " + std::to_string(out.mesh.triangles.rows()) + " triangles, " +
+                std::to_string(out.mesh.quads.rows()) + " quads, " +
+                std::to_string(out.mesh.boundaries.size()) + " boundaries (" + num(clock.seconds(), 3) +
                 " s)");
     return 0;
   }
@@ -97,31 +90,19 @@ int run(const Options& options, const Logger& log) {
     return 0;
   }
   if (options.command == "deform") {
-    const h5::Reader file = formats::open_checked(options.input, "flowmesh");
-    const Mesh mesh = formats::read_mesh(file);
-    const formats::Header header_in = formats::read_header(file);
+    const formats::FlowMesh in = formats::read_flowmesh(options.input);
     const auto walls = formats::read_walldisp(options.walldisp).walls;
     DeformReport report;
-    const Mesh moved = deform_mesh(mesh, walls, report);
-    {
-      h5::Writer w(options.output);
-      formats::Header header;
-      header.creator = "tfmb-mesh " + cli::version();
-      header.depth = header_in.depth;
-      header.geometry = header_in.geometry;
-      formats::write_header(w, "flowmesh", header);
-      formats::write_mesh(w, moved);
-      write_quality(w, report.quality);
-      for (const char* name : {"estimated_yplus", "first_layer_height"}) {
-        if (file.has_attr("/mesh", name))
-          w.set_attr("/mesh", name, file.attr_f64("/mesh", name));
-      }
-      if (file.has_attr("/mesh", "boundary_layers"))
-        w.set_attr("/mesh", "boundary_layers", file.attr_i64("/mesh", "boundary_layers"));
-      formats::write_provenance(w, provenance(options, {options.input, options.walldisp}));
-      w.commit();
-    }
-    formats::write_xdmf_sidecar(options.output);
+    formats::FlowMesh out;
+    out.header.creator = "tfmb-mesh " + cli::version();
+    out.header.depth = in.header.depth;
+    out.header.geometry = in.header.geometry;
+    out.mesh = deform_mesh(in.mesh, walls, report);
+    // The wall layers and their y+ estimate are the input's: deformation keeps the topology.
+    out.quality = in.quality;
+    set_quality(out.quality, report.quality);
+    formats::write_flowmesh(options.output, out,
+                            provenance(options, {options.input, options.walldisp}));
     if (report.projected_nodes > 0) {
       log.info(std::to_string(report.projected_nodes) +
                " wall nodes off the walldisp curves (joins, lips, end "

@@ -9,6 +9,7 @@
 #include "tfmb/common/h5.hpp"
 #include "tfmb/formats/materials.hpp"
 #include "tfmb/formats/schema.hpp"
+#include "tfmb/formats/strain.hpp"
 #include "tfmb/formats/structure.hpp"
 
 namespace tfmb::strain {
@@ -68,73 +69,52 @@ std::map<std::string, MaterialsFlap> read_materials(const std::filesystem::path&
   return out;
 }
 
-namespace {
-
-h5::MatrixXdR positions(const std::vector<Eigen::Vector2d>& p) {
-  h5::MatrixXdR m(static_cast<Eigen::Index>(p.size()), 2);
-  for (std::size_t i = 0; i < p.size(); ++i) m.row(static_cast<Eigen::Index>(i)) = p[i].transpose();
-  return m;
-}
-
-}  // namespace
-
-void write_strain(const std::filesystem::path& file, const formats::Header& header, const StrainResult& r,
-                  const formats::Provenance& provenance) {
-  h5::Writer w(file);
-  formats::write_header(w, "strain", header);
-  w.set_attr("/", "mechanical_basis", basis_name(r.basis));
-  w.set_attr("/", "worst_margin_total", r.worst_total.margin);
-  w.set_attr("/", "worst_margin_mechanical", r.worst_mechanical.margin);
-  w.set_attr("/", "worst_margin_thermal", r.worst_thermal.margin);
-  w.set_attr("/", "worst_flap", r.worst_total.flap);
-  w.set_attr("/", "worst_segment", static_cast<std::int64_t>(r.worst_total.segment));
-  w.set_attr("/", "worst_surface", r.worst_total.surface);
-  w.set_attr("/", "worst_position", std::vector<double>{r.worst_total.position.x(), r.worst_total.position.y()});
+// The file's own type (formats/strain.hpp) from the result; basis_name gives the basis's word.
+void write_strain(const std::filesystem::path& file, const formats::Header& header,
+                  const StrainResult& r, const formats::Provenance& provenance) {
+  formats::Strain out;
+  out.header = header;
+  out.mechanical_basis = basis_name(r.basis);
+  out.worst_margin_total = r.worst_total.margin;
+  out.worst_margin_mechanical = r.worst_mechanical.margin;
+  out.worst_margin_thermal = r.worst_thermal.margin;
+  out.worst_flap = r.worst_total.flap;
+  out.worst_segment = static_cast<std::int64_t>(r.worst_total.segment);
+  out.worst_surface = r.worst_total.surface;
+  out.worst_position = r.worst_total.position;
   for (const FlapStrains& f : r.flaps) {
-    const std::string g = "/flaps/" + f.name;
-    auto column = [&](auto getter) {
-      std::vector<double> v;
-      for (const SectionStrains& s : f.strains) v.push_back(getter(s));
-      return v;
-    };
-    w.write(g + "/element", f.element, "1", "material element (materials.h5) of each beam segment");
-    w.write(g + "/s", f.s, "m", "arc length of the segment middle");
-    w.write(g + "/position", positions(f.position), "m", "reference position of the segment middle");
-    w.write(g + "/mechanical_inner", column([](const SectionStrains& s) { return s.mechanical_inner; }), "1", "");
-    w.write(g + "/mechanical_outer", column([](const SectionStrains& s) { return s.mechanical_outer; }), "1", "");
-    w.write(g + "/thermal_inner", column([](const SectionStrains& s) { return s.thermal_inner; }), "1", "");
-    w.write(g + "/thermal_outer", column([](const SectionStrains& s) { return s.thermal_outer; }), "1", "");
-    w.write(g + "/total_inner", column([](const SectionStrains& s) { return s.total_inner; }), "1", "");
-    w.write(g + "/total_outer", column([](const SectionStrains& s) { return s.total_outer; }), "1", "");
-    w.write(g + "/allowable", f.allowable, "1", "allowable strain at the element temperature");
-    w.write(g + "/margin_mechanical", f.margin_mechanical, "1", "allowable / max |mechanical| - 1");
-    w.write(g + "/margin_thermal", f.margin_thermal, "1", "allowable / max |thermal| - 1");
-    w.write(g + "/margin_total", f.margin_total, "1", "allowable / max |total| - 1");
+    formats::StrainFlap flap;
+    flap.name = f.name;
+    flap.element = f.element;
+    flap.s = f.s;
+    flap.position = f.position;
+    for (const SectionStrains& x : f.strains) {
+      flap.mechanical_inner.push_back(x.mechanical_inner);
+      flap.mechanical_outer.push_back(x.mechanical_outer);
+      flap.thermal_inner.push_back(x.thermal_inner);
+      flap.thermal_outer.push_back(x.thermal_outer);
+      flap.total_inner.push_back(x.total_inner);
+      flap.total_outer.push_back(x.total_outer);
+    }
+    flap.allowable = f.allowable;
+    flap.margin_mechanical = f.margin_mechanical;
+    flap.margin_thermal = f.margin_thermal;
+    flap.margin_total = f.margin_total;
+    out.flaps.push_back(std::move(flap));
   }
-  std::vector<std::string> flap, surface;
-  std::vector<std::int64_t> segment, element;
-  std::vector<double> s, strain, margin;
-  std::vector<Eigen::Vector2d> position;
   for (const Worst& x : r.worst_list) {
-    flap.push_back(x.flap);
-    surface.push_back(x.surface);
-    segment.push_back(static_cast<std::int64_t>(x.segment));
-    element.push_back(x.element);
-    s.push_back(x.s);
-    strain.push_back(x.strain);
-    margin.push_back(x.margin);
-    position.push_back(x.position);
+    formats::StrainWorst worst;
+    worst.flap = x.flap;
+    worst.surface = x.surface;
+    worst.segment = static_cast<std::int64_t>(x.segment);
+    worst.element = x.element;
+    worst.s = x.s;
+    worst.position = x.position;
+    worst.total_strain = x.strain;
+    worst.margin_total = x.margin;
+    out.worst.push_back(std::move(worst));
   }
-  w.write_strings("/worst/flap", flap, "flap of each of the lowest total margins, ascending");
-  w.write_strings("/worst/surface", surface, "inner or outer");
-  w.write("/worst/segment", segment, "1", "segment within the flap");
-  w.write("/worst/element", element, "1", "material element");
-  w.write("/worst/s", s, "m", "arc length");
-  w.write("/worst/position", positions(position), "m", "");
-  w.write("/worst/total_strain", strain, "1", "");
-  w.write("/worst/margin_total", margin, "1", "");
-  formats::write_provenance(w, provenance);
-  w.commit();
+  formats::write_strain(file, out, provenance);
 }
 
 namespace {
