@@ -65,8 +65,8 @@ int run(const Options& options, const Logger& log) {
     log.summary("wrote " + options.output.string() + ": " + std::to_string(out.mesh.node_count()) +
                 " nodes, " + std::to_string(out.mesh.triangles.rows()) + " triangles, " +
                 std::to_string(out.mesh.quads.rows()) + " quads, " +
-                std::to_string(out.mesh.boundaries.size()) + " boundaries (" + num(clock.seconds(), 3) +
-                " s)");
+                std::to_string(out.mesh.boundaries.size()) + " boundaries (" +
+                num(clock.seconds(), 3) + " s)");
     return 0;
   }
   if (options.command == "solid") {

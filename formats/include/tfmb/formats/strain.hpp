@@ -17,13 +17,13 @@ namespace tfmb::formats {
 // One flap: a row per beam segment, in order from the flap's start.
 struct StrainFlap {
   std::string name;
-  std::vector<std::int64_t> element;       // material element (materials.h5) of each segment
-  std::vector<double> s;                   // [m] arc length of the segment middle
-  std::vector<Eigen::Vector2d> position;   // [m] reference position of the segment middle
+  std::vector<std::int64_t> element;      // material element (materials.h5) of each segment
+  std::vector<double> s;                  // [m] arc length of the segment middle
+  std::vector<Eigen::Vector2d> position;  // [m] reference position of the segment middle
   std::vector<double> mechanical_inner, mechanical_outer;  // [1] fibre strains
   std::vector<double> thermal_inner, thermal_outer;
   std::vector<double> total_inner, total_outer;
-  std::vector<double> allowable;           // [1] at the element temperature
+  std::vector<double> allowable;  // [1] at the element temperature
   std::vector<double> margin_mechanical, margin_thermal, margin_total;  // allowable / max|.| - 1
 };
 
@@ -33,8 +33,8 @@ struct StrainWorst {
   std::string surface;  // inner | outer
   std::int64_t segment = 0;
   std::int64_t element = 0;
-  double s = 0.0;                                        // [m]
-  Eigen::Vector2d position = Eigen::Vector2d::Zero();    // [m]
+  double s = 0.0;                                      // [m]
+  Eigen::Vector2d position = Eigen::Vector2d::Zero();  // [m]
   double total_strain = 0.0;
   double margin_total = 0.0;
 };
