@@ -209,6 +209,16 @@ void check_attribute(const h5::Reader& file, const AttributeRule& rule, const st
 
 }  // namespace
 
+const Schema& schema_of(const h5::Reader& file) {
+  if (!file.has_attr("/", "format"))
+    file.fail("/", "missing attribute 'format': not a tfmb file");
+  const std::string format = file.attr_string("/", "format");
+  const Schema* schema = find_schema(format);
+  if (!schema)
+    file.fail("/", "unknown format '" + format + "'");
+  return *schema;
+}
+
 std::vector<Problem> validate(const h5::Reader& file, const Schema& schema, bool stop_at_first) {
   std::vector<Problem> problems;
   auto add = [&](const std::string& object, const std::string& what) {

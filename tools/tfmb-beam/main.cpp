@@ -10,6 +10,7 @@
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
 #include "tfmb/common/options.hpp"
+#include "tfmb/formats/schema.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -60,8 +61,7 @@ int main(int argc, char** argv) {
     if (!options.initial_state.empty() && !std::filesystem::exists(options.initial_state))
       throw tfmb::BadInput(options.initial_state.string() + ": no such file");
     for (size_t i = 1; i < inputs.size(); ++i) {
-      const tfmb::h5::Reader r(inputs[i]);
-      const std::string format = r.attr_string("/", "format");
+      const std::string format = tfmb::formats::schema_of(tfmb::h5::Reader(inputs[i])).format;
       if (format == "tfmb/loads")
         options.loads = inputs[i];
       else if (format == "tfmb/materials")

@@ -66,18 +66,7 @@ int check_files(const Options& options, std::ostream& out, std::ostream& err) {
   for (const auto& path : options.files) {
     try {
       h5::Reader file(path);
-      if (!file.has_attr("/", "format")) {
-        err << path.string() << ": /: missing attribute 'format': not a tfmb file\n";
-        status = 3;
-        continue;
-      }
-      const std::string format = file.attr_string("/", "format");
-      const formats::Schema* schema = formats::find_schema(format);
-      if (!schema) {
-        err << path.string() << ": /: unknown format '" << format << "'\n";
-        status = 3;
-        continue;
-      }
+      const formats::Schema* schema = &formats::schema_of(file);
       const auto problems = formats::validate(file, *schema, false);
       for (const auto& problem : problems) err << problem.message << "\n";
       if (!problems.empty()) {

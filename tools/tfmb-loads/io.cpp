@@ -116,17 +116,10 @@ FlowTraces read_flow_traces(const std::filesystem::path& file,
 }
 
 std::vector<MeshWall> read_mesh_walls(const std::filesystem::path& file) {
-  std::string kind;
-  {
-    const h5::Reader probe(file);
-    if (!probe.has_attr("/", "format")) probe.fail("/", "no 'format' attribute: not a tfmb file");
-    kind = probe.attr_string("/", "format");
-    if (kind.rfind("tfmb/", 0) == 0) kind = kind.substr(5);
-  }
-  if (kind != "flow" && kind != "flowmesh") {
-    const h5::Reader probe(file);
-    probe.fail("/", "format 'tfmb/" + kind + "' has no flow mesh; give a flowmesh or flow file");
-  }
+  const std::string kind = formats::schema_of(h5::Reader(file)).kind;
+  if (kind != "flow" && kind != "flowmesh")
+    h5::Reader(file).fail("/", "format 'tfmb/" + kind +
+                                    "' has no flow mesh; give a flowmesh or flow file");
   // Either kind carries the mesh block; each is read (and checked) by its own reader.
   formats::ReadFrom source;
   formats::Mesh mesh;

@@ -63,6 +63,9 @@ struct Schema {
 const std::vector<Schema>& all_schemas();
 // The schema of a kind by name ("flowmesh") or format string ("tfmb/flowmesh"); nullptr if none.
 const Schema* find_schema(const std::string& kind_or_format);
+// The schema of an open file, by its root `format` attribute; BadInput "<file>: /: ..." when the
+// attribute is missing (not a tfmb file) or names no kind of this build.
+const Schema& schema_of(const h5::Reader& file);
 
 struct Problem {
   std::string object_path;
