@@ -118,8 +118,8 @@ FlowTraces read_flow_traces(const std::filesystem::path& file,
 std::vector<MeshWall> read_mesh_walls(const std::filesystem::path& file) {
   const std::string kind = formats::schema_of(h5::Reader(file)).kind;
   if (kind != "flow" && kind != "flowmesh")
-    h5::Reader(file).fail("/", "format 'tfmb/" + kind +
-                                    "' has no flow mesh; give a flowmesh or flow file");
+    h5::Reader(file).fail(
+        "/", "format 'tfmb/" + kind + "' has no flow mesh; give a flowmesh or flow file");
   // Either kind carries the mesh block; each is read (and checked) by its own reader.
   formats::ReadFrom source;
   formats::Mesh mesh;
