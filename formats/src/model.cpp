@@ -284,15 +284,10 @@ void write_model(const Model& model, const std::filesystem::path& file, const st
   w.commit();
 }
 
-Model read_model(const std::filesystem::path& file) {
-  const h5::Reader r = open_checked(file, "model");
-  Model model;
-  model.source = file;
-  const Header header = read_header(r);
-  model.geometry = header.geometry;
-  model.depth = header.depth;
-  if (r.has_attr("/", "title"))
-    model.title = r.attr_string("/", "title");
+namespace {
+
+// Flaps, in their 'order'.
+void read_flaps(const h5::Reader& r, Model& model) {
   std::vector<std::pair<std::int64_t, Flap>> flaps;
   for (const auto& name : r.children("/flaps")) {
     const std::string g = "/flaps/" + name;
@@ -331,6 +326,10 @@ Model read_model(const std::filesystem::path& file) {
             [](const auto& a, const auto& b) { return a.first < b.first; });
   for (auto& [order, f] : flaps)
     model.flaps.push_back(std::move(f));
+}
+
+// Joints between flap ends; each names flaps that exist.
+void read_joints(const h5::Reader& r, Model& model) {
   for (const auto& name :
        r.is_group("/joints") ? r.children("/joints") : std::vector<std::string>{}) {
     const std::string g = "/joints/" + name;
@@ -378,6 +377,10 @@ Model read_model(const std::filesystem::path& file) {
     }
     model.joints.push_back(j);
   }
+}
+
+// Supports to ground; sliding ones with their direction.
+void read_supports(const h5::Reader& r, Model& model) {
   for (const auto& name :
        r.is_group("/supports") ? r.children("/supports") : std::vector<std::string>{}) {
     const std::string g = "/supports/" + name;
@@ -400,6 +403,10 @@ Model read_model(const std::filesystem::path& file) {
       r.fail(g, "support refers to unknown flap '" + s.flap + "'");
     model.supports.push_back(s);
   }
+}
+
+// The flow domain: its kind and sizes, and its boundary loop (closed, in 'order').
+void read_domain(const h5::Reader& r, Model& model) {
   DomainSettings& d = model.domain.settings;
   d.kind = r.attr_string("/domain", "kind");
   auto optional_f64 = [&](const std::string& object, const std::string& name, double& target) {
@@ -448,6 +455,10 @@ Model read_model(const std::filesystem::path& file) {
       }
     }
   }
+}
+
+// Flow conditions, thermal settings, mesh controls and analysis settings: plain attributes.
+void read_settings(const h5::Reader& r, Model& model) {
   FlowConditions& c = model.flow;
   const std::string cg = "/conditions";
   c.nozzle_pressure_ratio = r.attr_f64(cg, "nozzle_pressure_ratio");
@@ -501,6 +512,24 @@ Model read_model(const std::filesystem::path& file) {
   a.convergence = r.attr_string("/analysis", "convergence");
   a.acceleration = r.attr_string("/analysis", "acceleration");
   a.relaxation = r.attr_f64("/analysis", "relaxation");
+}
+
+}  // namespace
+
+Model read_model(const std::filesystem::path& file) {
+  const h5::Reader r = open_checked(file, "model");
+  Model model;
+  model.source = file;
+  const Header header = read_header(r);
+  model.geometry = header.geometry;
+  model.depth = header.depth;
+  if (r.has_attr("/", "title"))
+    model.title = r.attr_string("/", "title");
+  read_flaps(r, model);
+  read_joints(r, model);
+  read_supports(r, model);
+  read_domain(r, model);
+  read_settings(r, model);
   return model;
 }
 
