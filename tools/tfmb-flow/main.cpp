@@ -62,8 +62,9 @@ int main(int argc, char** argv) {
             "much below the adiabatic wall temperature gives the heat transfer coefficient (0: "
             "skip)");
   table.add("--inflow-ramp", o.inflow_ramp, "1",
-            "iterations over which the inflow total pressure rises from the ambient pressure to "
-            "--p0 (-1: 50 for a jet into a far field started from rest, else 0)");
+            "iterations over which the inflow total pressure rises from the free stream's total "
+            "pressure to --p0 (-1: 50 for a jet into a far field above the free stream's total "
+            "pressure, else 0)");
   table.add("--wall-temperature", o.wall_temperature, "K",
             "isothermal no-slip walls (laminar; default adiabatic)");
   table.add("--throat-area", o.throat_area, "m or m^2",

@@ -214,15 +214,26 @@ class FlowStage {
       // continue the residual drop of the run being restarted
       settings.residual_reference = *restart->convergence.residual_reference;
     }
+    // The ramp opens from the total pressure of the start state, the free stream's (isentropic
+    // from the ambient state at --freestream-mach): air at rest gives the ambient pressure.
+    const double m2 = o.freestream_mach * o.freestream_mach;
+    const double freestream_total_pressure =
+        o.ambient_pressure *
+        std::pow(1.0 + 0.5 * (o.gamma - 1.0) * m2, o.gamma / (o.gamma - 1.0));
     if (has_inflow && !o.restart_file) {
-      // A jet started from air at rest: open the valve over the first iterations (see
-      // SolverSettings::inflow_ramp_iterations); internal flows start from moving gas instead.
+      // A jet started from the free stream: open the valve over the first iterations (see
+      // SolverSettings::inflow_ramp_iterations) when there is something to open, i.e. the inflow
+      // total pressure is above the free stream's (by more than 0.1 %: the TMR plate's p0 is the
+      // free stream's own, and ramping from the ambient static pressure there made a transient
+      // of its own and held the first-order start to iteration 51). Internal flows start from
+      // moving gas instead.
+      const bool driven = o.stagnation_pressure > 1.001 * freestream_total_pressure;
       settings.inflow_ramp_iterations =
-          o.inflow_ramp >= 0 ? o.inflow_ramp : (has_farfield ? 50 : 0);
-      settings.inflow_ramp_start_pressure = o.ambient_pressure;
+          o.inflow_ramp >= 0 ? o.inflow_ramp : (has_farfield && driven ? 50 : 0);
+      settings.inflow_ramp_start_pressure = freestream_total_pressure;
     } else if (o.inflow_ramp > 0) {
       settings.inflow_ramp_iterations = o.inflow_ramp;
-      settings.inflow_ramp_start_pressure = o.ambient_pressure;
+      settings.inflow_ramp_start_pressure = freestream_total_pressure;
     }
   }
 
