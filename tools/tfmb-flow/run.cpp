@@ -218,8 +218,7 @@ class FlowStage {
     // from the ambient state at --freestream-mach): air at rest gives the ambient pressure.
     const double m2 = o.freestream_mach * o.freestream_mach;
     const double freestream_total_pressure =
-        o.ambient_pressure *
-        std::pow(1.0 + 0.5 * (o.gamma - 1.0) * m2, o.gamma / (o.gamma - 1.0));
+        o.ambient_pressure * std::pow(1.0 + 0.5 * (o.gamma - 1.0) * m2, o.gamma / (o.gamma - 1.0));
     if (has_inflow && !o.restart_file) {
       // A jet started from the free stream: open the valve over the first iterations (see
       // SolverSettings::inflow_ramp_iterations) when there is something to open, i.e. the inflow
