@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <map>
@@ -60,12 +61,21 @@ std::vector<Curve> read_csv(const std::filesystem::path& file, double scale) {
     } catch (const std::exception&) {
       throw BadInput(where + "x and y must be numbers");
     }
+    // stod reads "nan" and "inf": a curve through them has no length and no place, and the
+    // message further on ("zero length") would name neither the file nor the line.
+    if (!std::isfinite(x) || !std::isfinite(y)) throw BadInput(where + "x and y must be finite");
     auto [it, inserted] = index.try_emplace(fields[0], curves.size());
     if (inserted) curves.push_back({fields[0], {}});
     else if (it->second + 1 != curves.size()) {
       throw BadInput(where + "points of curve '" + fields[0] + "' must be consecutive rows");
     }
-    curves[it->second].points.emplace_back(x * scale, y * scale);
+    std::vector<geometry::Point>& points = curves[it->second].points;
+    const geometry::Point point(x * scale, y * scale);
+    if (!points.empty() && points.back() == point) {
+      throw BadInput(where + "repeats the previous point of curve '" + fields[0] +
+                     "' (a zero-length segment)");
+    }
+    points.push_back(point);
   }
   if (!header_seen) throw BadInput(file.string() + ": empty geometry file (expected 'curve,x,y')");
   for (const auto& c : curves) {
