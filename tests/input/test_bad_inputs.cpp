@@ -223,8 +223,8 @@ TEST(BadInput, PrismaticJointAxis) {
 // zero length", naming neither the file nor the line.
 TEST(BadInput, NonFiniteAndRepeatedPointsNameTheFileLine) {
   const auto dir = scratch_dir("input-nan-point");
-  auto r = run_case(dir, "curve,x,y\nc1,0,0.5\nc1,nan,0.5\nc2,1,0.5\nc2,2,0.6\n",
-                    case_text("g.csv"));
+  auto r =
+      run_case(dir, "curve,x,y\nc1,0,0.5\nc1,nan,0.5\nc2,1,0.5\nc2,2,0.6\n", case_text("g.csv"));
   EXPECT_EQ(r.exit_code, 3);
   EXPECT_NE(r.stderr_text.find("g.csv:3: x and y must be finite"), std::string::npos)
       << r.stderr_text;

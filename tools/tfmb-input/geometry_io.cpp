@@ -63,7 +63,8 @@ std::vector<Curve> read_csv(const std::filesystem::path& file, double scale) {
     }
     // stod reads "nan" and "inf": a curve through them has no length and no place, and the
     // message further on ("zero length") would name neither the file nor the line.
-    if (!std::isfinite(x) || !std::isfinite(y)) throw BadInput(where + "x and y must be finite");
+    if (!std::isfinite(x) || !std::isfinite(y))
+      throw BadInput(where + "x and y must be finite");
     auto [it, inserted] = index.try_emplace(fields[0], curves.size());
     if (inserted) curves.push_back({fields[0], {}});
     else if (it->second + 1 != curves.size()) {
