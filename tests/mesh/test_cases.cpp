@@ -103,3 +103,23 @@ INSTANTIATE_TEST_SUITE_P(Cases, Case,
                            std::replace(n.begin(), n.end(), '-', '_');
                            return n;
                          });
+
+// A mesh size far below the case's (here --scale 0.01, a hundred times finer) is refused at once
+// with the estimated size and what to change; it used to mesh for minutes without a word.
+TEST(FlowMeshSize, AMeshFarAboveTheLimitIsRefusedBeforeMeshing) {
+  const auto dir = scratch_dir("mesh-too-fine");
+  const std::filesystem::path model = dir / "model.h5";
+  const auto case_file = std::filesystem::path(TFMB_SOURCE_DIR) / "cases/simple-nozzle/case.toml";
+  ASSERT_EQ(run_tool("tfmb-input " + case_file.string() + " -o " + model.string(), dir).exit_code,
+            0);
+  const auto output = dir / "flowmesh.h5";
+  auto r = run_tool("tfmb-mesh flow " + model.string() + " -o " + output.string() + " --scale 0.01",
+                    dir);
+  EXPECT_EQ(r.exit_code, 3) << r.stderr_text;
+  EXPECT_NE(r.stderr_text.find("at least about"), std::string::npos) << r.stderr_text;
+  EXPECT_NE(r.stderr_text.find("--max-cells"), std::string::npos) << r.stderr_text;
+  EXPECT_FALSE(std::filesystem::exists(output));
+  // the same case at its own size stays far below the limit
+  r = run_tool("tfmb-mesh flow " + model.string() + " -o " + output.string() + " --scale 4", dir);
+  EXPECT_EQ(r.exit_code, 0) << r.stderr_text;
+}

@@ -749,6 +749,34 @@ Mesh assemble_mesh(const std::vector<formats::DomainBoundary>& pieces, const Cel
   return mesh;
 }
 
+// How big the mesh will be, before anything is sampled: wall nodes from the wall lengths and the
+// wall spacing, strip quads at the largest layer count, and a lower bound on the triangles (the
+// domain's area in equilateral triangles of the far-field size, the largest anywhere). A tiny
+// mesh.wall_size or --scale made tfmb-mesh sample and mesh for minutes without a word.
+struct SizeEstimate {
+  double wall_nodes = 0.0;
+  double cells = 0.0;
+};
+
+SizeEstimate estimate_size(const Model& model, const std::vector<formats::DomainBoundary>& pieces,
+                           const NozzleSizes& sizes) {
+  SizeEstimate e;
+  double twice_area = 0.0;  // shoelace over the domain loop
+  for (const auto& piece : pieces) {
+    if (is_wall(piece))
+      e.wall_nodes += length(piece.points) / sizes.wall;
+    for (std::size_t i = 0; i + 1 < piece.points.size(); ++i) {
+      const Point& a = piece.points[i];
+      const Point& b = piece.points[i + 1];
+      twice_area += a.x() * b.y() - b.x() * a.y();
+    }
+  }
+  const double triangle_area = std::sqrt(3.0) / 4.0 * sizes.far * sizes.far;
+  e.cells = e.wall_nodes * std::max(0, model.mesh.max_layers) +
+            0.5 * std::abs(twice_area) / triangle_area;
+  return e;
+}
+
 // Structured quads for the channel and flat-plate domains (structured.cpp).
 Mesh build_structured_flow_mesh(const Model& model, double scale, FlowMeshReport& report,
                                 const Stopwatch& clock) {
@@ -782,6 +810,18 @@ Mesh build_flow_mesh(const Model& model, const FlowMeshOptions& options, FlowMes
 
   const auto& pieces = domain.boundaries;
   const NozzleSizes sizes = nozzle_sizes(model, scale);
+  const SizeEstimate size = estimate_size(model, pieces, sizes);
+  log.verbose("flow mesh: about " + text::format_number(size.wall_nodes, 3) + " wall nodes and at least " +
+              text::format_number(size.cells, 3) + " cells expected");
+  if (!(size.cells <= options.max_cells)) {
+    throw BadInput("the flow mesh would have at least about " + text::format_number(size.cells, 3) +
+                   " cells (" + text::format_number(size.wall_nodes, 3) +
+                   " wall nodes at a wall spacing of " + text::format_number(sizes.wall, 3) +
+                   " m, far-field spacing " + text::format_number(sizes.far, 3) +
+                   " m), more than --max-cells " + text::format_number(options.max_cells, 3) +
+                   ": check mesh.wall_size, mesh.far_size and mesh.scale (or --scale), or raise "
+                   "--max-cells");
+  }
   WallRuns walls = find_wall_runs(pieces);
   for (Run& run : walls.runs) {
     sample_wall_run(run, pieces, model, sizes, scale);

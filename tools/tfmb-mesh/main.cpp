@@ -31,6 +31,10 @@ int main(int argc, char** argv) {
   flow_table.add("--algorithm", options.algorithm, "",
                  "gmsh 2D algorithm: 1 MeshAdapt, 2 Automatic, 5 Delaunay, 6 Frontal-Delaunay",
                  CLI::IsMember({1, 2, 5, 6}));
+  flow_table.add("--max-cells", options.max_cells, "1",
+                 "refuse a nozzle mesh estimated (from the wall and far-field spacings, before "
+                 "meshing) above this many cells",
+                 tfmb::cli::range(1.0, 1e9));
   auto* solid =
       app.add_subcommand("solid", "Solid mesh of the flap walls, linked to the beam elements");
   tfmb::cli::OptionTable solid_table(*solid);

@@ -42,6 +42,9 @@ void orient_counter_clockwise(Mesh& mesh);
 struct FlowMeshOptions {
   double scale = 0.0;  // 0: the model's mesh.scale; else overrides it
   int algorithm = 6;   // gmsh 2D algorithm (5 Delaunay, 6 Frontal-Delaunay)
+  // Refuse a nozzle mesh estimated above this many cells before sampling anything (the case
+  // meshes have 10^4-10^5; 2e6 is minutes and gigabytes in gmsh).
+  double max_cells = 2e6;
 };
 struct FlowMeshReport {
   Quality quality;
@@ -89,6 +92,7 @@ struct Options {
   std::filesystem::path input, walldisp, output;
   double scale = 0.0;  // 0: the case's mesh.scale
   int algorithm = 6;
+  double max_cells = FlowMeshOptions{}.max_cells;
   std::string command_line;
   std::string settings_toml;  // the command line's options (cli::OptionTable) for /provenance
 };

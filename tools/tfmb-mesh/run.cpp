@@ -42,6 +42,7 @@ int run(const Options& options, const Logger& log) {
     FlowMeshOptions fo;
     fo.scale = options.scale;
     fo.algorithm = options.algorithm;
+    fo.max_cells = options.max_cells;
     FlowMeshReport report;
     formats::FlowMesh out;
     out.mesh = build_flow_mesh(model, fo, report, log);
