@@ -811,8 +811,8 @@ Mesh build_flow_mesh(const Model& model, const FlowMeshOptions& options, FlowMes
   const auto& pieces = domain.boundaries;
   const NozzleSizes sizes = nozzle_sizes(model, scale);
   const SizeEstimate size = estimate_size(model, pieces, sizes);
-  log.verbose("flow mesh: about " + text::format_number(size.wall_nodes, 3) + " wall nodes and at least " +
-              text::format_number(size.cells, 3) + " cells expected");
+  log.verbose("flow mesh: about " + text::format_number(size.wall_nodes, 3) +
+              " wall nodes and at least " + text::format_number(size.cells, 3) + " cells expected");
   if (!(size.cells <= options.max_cells)) {
     throw BadInput("the flow mesh would have at least about " + text::format_number(size.cells, 3) +
                    " cells (" + text::format_number(size.wall_nodes, 3) +
