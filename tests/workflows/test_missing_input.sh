@@ -52,5 +52,13 @@ for script in "$src"/workflows/*; do
   [ "$rc" -eq 2 ] || { echo "FAIL workflows/$name without arguments: exit $rc, expected 2"; failed=1; }
 done
 expect_missing "workflows/case-summary" "$src/workflows/case-summary" "$scratch/no-such-file.h5"
+# a run folder with a space is refused before anything runs (make split it and created a stray
+# folder named after its first word)
+rc=0; make -s -C "$src" -f Makefile.cases RUN="$scratch/two words" BIN="$bin" model > "$scratch/make" 2>&1 || rc=$?
+if [ "$rc" -ne 2 ] || [ -e "$scratch/two" ] || ! grep -q "without spaces" "$scratch/make"; then
+  echo "FAIL RUN with a space: exit $rc: $(head -c 300 "$scratch/make")"; failed=1
+else
+  echo "ok   RUN with a space refused"
+fi
 [ $failed -eq 0 ] && echo "missing inputs: every tool exits 3" || echo "missing inputs: some tools do not"
 exit $failed
