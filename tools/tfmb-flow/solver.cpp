@@ -1145,9 +1145,9 @@ struct FlowSolver::SolveLoop {
   SolveReport report;
   long evaluations_before = 0;
   double residual_seconds_before = 0.0;
-  int n = 0;              // nodes
-  bool coupled = false;   // coupled SA Newton steps (turbulence_coupled_)
-  int nb = 4;             // unknowns per node
+  int n = 0;             // nodes
+  bool coupled = false;  // coupled SA Newton steps (turbulence_coupled_)
+  int nb = 4;            // unknowns per node
   std::vector<double> rhs, du;
   std::vector<double> diag_scale;  // V / dt per node
   // the state before the last update, for a return after a non-physical one
@@ -1482,10 +1482,9 @@ bool FlowSolver::abandon_failed_newton_phase(SolveLoop& s) {
 void FlowSolver::update_cfl(SolveLoop& s) {
   const double r = s.rnorm[0];
   if (s.it > 1) {
-    const double ser =
-        s.r_max > 0.0 && r > 0.0
-            ? settings_.cfl_start * s.cfl_scale * std::pow(s.r_max / r, settings_.ser_exponent)
-            : settings_.cfl_start * s.cfl_scale;
+    const double ser = s.r_max > 0.0 && r > 0.0 ? settings_.cfl_start * s.cfl_scale *
+                                                      std::pow(s.r_max / r, settings_.ser_exponent)
+                                                : settings_.cfl_start * s.cfl_scale;
     double adaptive = 0.0;
     if (settings_.cfl_adaptive_growth > 1.0) {
       // grow while the Newton updates are taken whole and the residual does not run away
@@ -1636,8 +1635,8 @@ GmresResult FlowSolver::newton_krylov_solve(SolveLoop& s) {
     const double safeguard = 0.9 * s.forcing_previous * s.forcing_previous;
     if (safeguard > 0.1)
       forcing = std::max(forcing, safeguard);
-    forcing = std::clamp(forcing, settings_.eisenstat_walker_min,
-                         settings_.matrix_free_linear_tolerance);
+    forcing =
+        std::clamp(forcing, settings_.eisenstat_walker_min, settings_.matrix_free_linear_tolerance);
   }
   s.newton_residual_previous = s.r_previous;
   s.forcing_previous = forcing;
