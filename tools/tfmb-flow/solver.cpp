@@ -1649,6 +1649,56 @@ GmresResult FlowSolver::newton_krylov_solve(SolveLoop& s) {
   return lin;
 }
 
+// The fraction omega of node i's update du_i that is taken, and the relaxed conservative state
+// un it gives: the relative change of density and pressure (and, coupled, of nu_tilde) limited,
+// then omega halved until the state is physical (0: the node keeps its state).
+double FlowSolver::node_relaxation(int i, const double* du_i, bool coupled, State& un) const {
+  un = u_[i];
+  for (int v = 0; v < 4; ++v)
+    un[v] += du_i[v];
+  const State wn = gas_.primitive(un);
+  const State& wo = w_[i];
+  const double change =
+      std::max(std::abs(wn[0] - wo[0]) / wo[0], std::abs(wn[3] - wo[3]) / wo[3]);
+  double omega_i = 1.0;
+  if (!std::isfinite(change))
+    omega_i = 0.0;
+  else if (change > settings_.max_relative_update)
+    omega_i = settings_.max_relative_update / change;
+  if (coupled && wall_node_bc_[i] < 0) {
+    // nu_tilde may grow by a factor 1 + max_turbulence_update per step and fall by the
+    // same fraction of its scale |nu_tilde| + nu: the Newton step of the source terms
+    // overshoots where production outruns destruction (a physicality-based step limit)
+    const double scale = std::abs(nu_tilde_[i]) + sa_nu_[i];
+    const double change_nu = std::abs(du_i[4]) / scale;
+    if (!std::isfinite(change_nu))
+      omega_i = 0.0;
+    else if (change_nu * omega_i > settings_.max_turbulence_update)
+      omega_i = settings_.max_turbulence_update / change_nu;
+  }
+  // The primitive change is not linear in omega (kinetic energy): halve omega until the
+  // relaxed state is physical and within the allowed change, rather than freezing the node
+  // (a frozen node near a near-vacuum lip corner never recovers, its residual grows and the
+  // SER ramp then collapses the CFL everywhere).
+  for (int halving = 0;; ++halving) {
+    for (int v = 0; v < 4; ++v)
+      un[v] = u_[i][v] + omega_i * du_i[v];
+    const double p_new =
+        (gas_.gamma - 1.0) * (un[3] - 0.5 * (un[1] * un[1] + un[2] * un[2]) / un[0]);
+    const bool ok = un[0] > 0.0 && p_new > kPressureFloor * un[3] &&
+                    std::abs(p_new - wo[3]) <= 2.0 * settings_.max_relative_update * wo[3];
+    if (ok)
+      break;
+    if (halving == 12 || omega_i == 0.0) {
+      omega_i = 0.0;
+      un = u_[i];
+      break;
+    }
+    omega_i *= 0.5;
+  }
+  return omega_i;
+}
+
 // The update u += omega du, relaxed node by node so that a near-vacuum corner does not hold
 // back the rest of the domain; then the strong conditions, and the least relaxation for the
 // report.
@@ -1666,49 +1716,8 @@ void FlowSolver::relax_update(SolveLoop& s) {
     s.nu_good = nu_tilde_;
   for (int i = 0; i < n; ++i) {
     const double* du_i = s.du.data() + nb * static_cast<std::size_t>(i);
-    State un = u_[i];
-    for (int v = 0; v < 4; ++v)
-      un[v] += du_i[v];
-    const State wn = gas_.primitive(un);
-    const State& wo = w_[i];
-    const double change =
-        std::max(std::abs(wn[0] - wo[0]) / wo[0], std::abs(wn[3] - wo[3]) / wo[3]);
-    double omega_i = 1.0;
-    if (!std::isfinite(change))
-      omega_i = 0.0;
-    else if (change > settings_.max_relative_update)
-      omega_i = settings_.max_relative_update / change;
-    if (coupled && wall_node_bc_[i] < 0) {
-      // nu_tilde may grow by a factor 1 + max_turbulence_update per step and fall by the
-      // same fraction of its scale |nu_tilde| + nu: the Newton step of the source terms
-      // overshoots where production outruns destruction (a physicality-based step limit)
-      const double scale = std::abs(nu_tilde_[i]) + sa_nu_[i];
-      const double change_nu = std::abs(du_i[4]) / scale;
-      if (!std::isfinite(change_nu))
-        omega_i = 0.0;
-      else if (change_nu * omega_i > settings_.max_turbulence_update)
-        omega_i = settings_.max_turbulence_update / change_nu;
-    }
-    // The primitive change is not linear in omega (kinetic energy): halve omega until the
-    // relaxed state is physical and within the allowed change, rather than freezing the node
-    // (a frozen node near a near-vacuum lip corner never recovers, its residual grows and the
-    // SER ramp then collapses the CFL everywhere).
-    for (int halving = 0;; ++halving) {
-      for (int v = 0; v < 4; ++v)
-        un[v] = u_[i][v] + omega_i * du_i[v];
-      const double p_new =
-          (gas_.gamma - 1.0) * (un[3] - 0.5 * (un[1] * un[1] + un[2] * un[2]) / un[0]);
-      const bool ok = un[0] > 0.0 && p_new > kPressureFloor * un[3] &&
-                      std::abs(p_new - wo[3]) <= 2.0 * settings_.max_relative_update * wo[3];
-      if (ok)
-        break;
-      if (halving == 12 || omega_i == 0.0) {
-        omega_i = 0.0;
-        un = u_[i];
-        break;
-      }
-      omega_i *= 0.5;
-    }
+    State un;
+    const double omega_i = node_relaxation(i, du_i, coupled, un);
     u_[i] = un;
     if (coupled) {
       // the same fraction of the Newton step for nu_tilde; strong 0 on no-slip walls
