@@ -1658,8 +1658,7 @@ double FlowSolver::node_relaxation(int i, const double* du_i, bool coupled, Stat
     un[v] += du_i[v];
   const State wn = gas_.primitive(un);
   const State& wo = w_[i];
-  const double change =
-      std::max(std::abs(wn[0] - wo[0]) / wo[0], std::abs(wn[3] - wo[3]) / wo[3]);
+  const double change = std::max(std::abs(wn[0] - wo[0]) / wo[0], std::abs(wn[3] - wo[3]) / wo[3]);
   double omega_i = 1.0;
   if (!std::isfinite(change))
     omega_i = 0.0;
