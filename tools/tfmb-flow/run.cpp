@@ -282,81 +282,101 @@ class FlowStage {
              (lm.geometry == Geometry::axisymmetric ? ", axisymmetric" : ", planar"));
   }
 
+  // The solve: time-accurate (dual time stepping, flow.h5 then holds the time averages),
+  // second order after a first-order start, or one steady solve.
   void solve() {
-    FlowSolver& solver = *solver_;
-    const bool time_accurate = o.time.time_step > 0.0;
-    if (time_accurate) {
-      TimeAccurateSettings time = o.time;
-      if (time.time_steps < 1 || time.statistics_start > time.time_steps) {
-        throw BadInput("--time-step needs --time-steps >= 1 and --statistics-start (" +
-                       std::to_string(time.statistics_start) + ") <= --time-steps (" +
-                       std::to_string(time.time_steps) + ")");
-      }
-      time.reference_pressure = p_ref;
-      time.print_every = settings.print_every;
-      time.cfl_start = settings.cfl_start;
-      time.cfl_max = settings.cfl_max;
-      result.time_average = run_time_accurate(solver, time, wall_curves);
-      const TimeAccurateResult& ta = *result.time_average;
-      log.info("time-accurate: " + std::to_string(time.time_steps) + " steps of " +
-               text::format_number(time.time_step) + " s (" + std::to_string(ta.iterations) +
-               " inner iterations, " + std::to_string(ta.unconverged_steps) +
-               " steps short of the inner drop); mean over " + std::to_string(ta.averaged_steps) +
-               " steps, wall pressure means of the window's halves differ by " +
-               text::format_number(ta.mean_change) + " p0");
-      // the report of a time-accurate run: one row per physical step
-      SolveReport& r = result.report;
-      r.converged = ta.mean_converged;
-      r.iterations = static_cast<int>(ta.iterations);
-      r.linear_iterations = ta.linear_iterations;
-      r.residual_evaluations = ta.residual_evaluations;
-      r.residual_seconds = ta.residual_seconds;
-      r.wall_time = ta.wall_time;
-      for (std::size_t k = 0; k < ta.history.size(); ++k) {
-        IterationRecord rec;
-        rec.iteration = static_cast<int>(k) + 1;
-        rec.residual = ta.history[k].residual;
-        r.history.push_back(rec);
-      }
-      // integrals, eddy viscosity and the heat-transfer probe start from the time-mean state
-      solver.set_primitive(ta.mean_primitive);
-      if (turbulent)
-        solver.set_nu_tilde(ta.mean_nu_tilde);
+    if (o.time.time_step > 0.0) {
+      solve_time_accurate();
     } else if (o.first_order_start && settings.order >= 2 && !o.restart_file) {
-      const SolverSettings first_settings =
-          first_order_start_settings(settings, o.first_order_start_drop);
-      SolveReport first;
-      {
-        FlowSolver first_solver(lm.mesh, lm.geometry, gas, bcs, first_settings);
-        first_solver.set_primitive(solver.primitive());
-        first = first_solver.solve();
-        log.info(std::string("first-order start: ") +
-                 (first.converged ? "converged" : "NOT converged") + " in " +
-                 std::to_string(first.iterations) + " iterations, residual drop " +
-                 text::format_number(first.residual_drop) + "; continuing at second order");
-        solver.set_primitive(first_solver.primitive());
-        if (turbulent)
-          solver.set_nu_tilde(first_solver.nu_tilde());
-      }
-      // the second stage continues the first one's residual drop and starts at full inflow pressure
-      solver.set_residual_reference(first.residual_reference);
-      solver.set_inflow_ramp(0);
-      SolveReport second = solver.solve();
-      for (auto& rec : second.history) {
-        rec.iteration += first.iterations;
-        rec.wall_time += first.wall_time;
-      }
-      second.history.insert(second.history.begin(), first.history.begin(), first.history.end());
-      second.iterations += first.iterations;
-      second.linear_iterations += first.linear_iterations;
-      second.residual_evaluations += first.residual_evaluations;
-      second.residual_seconds += first.residual_seconds;
-      second.backoffs += first.backoffs;
-      second.wall_time += first.wall_time;
-      result.report = std::move(second);
+      solve_with_first_order_start();
     } else {
-      result.report = solver.solve();
+      result.report = solver_->solve();
     }
+  }
+
+  // Time-accurate run: the physical steps and their averages, a report of one row per physical
+  // step, and the time-mean state left in the solver for the integrals, the eddy viscosity and
+  // the heat-transfer probe.
+  void solve_time_accurate() {
+    FlowSolver& solver = *solver_;
+    TimeAccurateSettings time = o.time;
+    if (time.time_steps < 1 || time.statistics_start > time.time_steps) {
+      throw BadInput("--time-step needs --time-steps >= 1 and --statistics-start (" +
+                     std::to_string(time.statistics_start) + ") <= --time-steps (" +
+                     std::to_string(time.time_steps) + ")");
+    }
+    time.reference_pressure = p_ref;
+    time.print_every = settings.print_every;
+    time.cfl_start = settings.cfl_start;
+    time.cfl_max = settings.cfl_max;
+    result.time_average = run_time_accurate(solver, time, wall_curves);
+    const TimeAccurateResult& ta = *result.time_average;
+    log.info("time-accurate: " + std::to_string(time.time_steps) + " steps of " +
+             text::format_number(time.time_step) + " s (" + std::to_string(ta.iterations) +
+             " inner iterations, " + std::to_string(ta.unconverged_steps) +
+             " steps short of the inner drop); mean over " + std::to_string(ta.averaged_steps) +
+             " steps, wall pressure means of the window's halves differ by " +
+             text::format_number(ta.mean_change) + " p0");
+    // the report of a time-accurate run: one row per physical step
+    SolveReport& r = result.report;
+    r.converged = ta.mean_converged;
+    r.iterations = static_cast<int>(ta.iterations);
+    r.linear_iterations = ta.linear_iterations;
+    r.residual_evaluations = ta.residual_evaluations;
+    r.residual_seconds = ta.residual_seconds;
+    r.wall_time = ta.wall_time;
+    for (std::size_t k = 0; k < ta.history.size(); ++k) {
+      IterationRecord rec;
+      rec.iteration = static_cast<int>(k) + 1;
+      rec.residual = ta.history[k].residual;
+      r.history.push_back(rec);
+    }
+    // integrals, eddy viscosity and the heat-transfer probe start from the time-mean state
+    solver.set_primitive(ta.mean_primitive);
+    if (turbulent)
+      solver.set_nu_tilde(ta.mean_nu_tilde);
+  }
+
+  // Second order without a restart: the first-order stage, then the second-order one from its
+  // state, continuing its residual drop at full inflow pressure; one report of both.
+  void solve_with_first_order_start() {
+    FlowSolver& solver = *solver_;
+    const SolveReport first = solve_first_order_stage();
+    // the second stage continues the first one's residual drop and starts at full inflow pressure
+    solver.set_residual_reference(first.residual_reference);
+    solver.set_inflow_ramp(0);
+    SolveReport second = solver.solve();
+    for (auto& rec : second.history) {
+      rec.iteration += first.iterations;
+      rec.wall_time += first.wall_time;
+    }
+    second.history.insert(second.history.begin(), first.history.begin(), first.history.end());
+    second.iterations += first.iterations;
+    second.linear_iterations += first.linear_iterations;
+    second.residual_evaluations += first.residual_evaluations;
+    second.residual_seconds += first.residual_seconds;
+    second.backoffs += first.backoffs;
+    second.wall_time += first.wall_time;
+    result.report = std::move(second);
+  }
+
+  // The first-order start (first_order_start_settings) in a solver of its own, from the start
+  // state; its final state (and nu_tilde) becomes the second-order solver's.
+  SolveReport solve_first_order_stage() {
+    FlowSolver& solver = *solver_;
+    const SolverSettings first_settings =
+        first_order_start_settings(settings, o.first_order_start_drop);
+    FlowSolver first_solver(lm.mesh, lm.geometry, gas, bcs, first_settings);
+    first_solver.set_primitive(solver.primitive());
+    SolveReport first = first_solver.solve();
+    log.info(std::string("first-order start: ") +
+             (first.converged ? "converged" : "NOT converged") + " in " +
+             std::to_string(first.iterations) + " iterations, residual drop " +
+             text::format_number(first.residual_drop) + "; continuing at second order");
+    solver.set_primitive(first_solver.primitive());
+    if (turbulent)
+      solver.set_nu_tilde(first_solver.nu_tilde());
+    return first;
   }
 
   void integrate() {
@@ -468,9 +488,21 @@ class FlowStage {
     }
   }
 
+  // flow.h5: the fields, the wall traces, the integrals, the convergence record and the
+  // provenance; then the run's outcome in the log.
   void write() {
+    formats::Flow out = output_fields();
+    output_walls(out);
+    output_integrals(out);
+    output_convergence(out.convergence);
+    formats::write_flow(o.output, out, provenance());
+    log_outcome();
+  }
+
+  // The header, the mesh and the point fields of the solution (before the heat-transfer probe),
+  // refused if any node's state is not physical.
+  formats::Flow output_fields() const {
     const FlowSolver& solver = *solver_;
-    const SolveReport& rep = result.report;
     const std::size_t n = lm.file_mesh.node_count();
     std::vector<double> rho(n), p(n), temp(n), mach(n);
     h5::MatrixXdR vel(n, 3);
@@ -506,6 +538,12 @@ class FlowStage {
       out.eddy_viscosity = eddy_viscosity;
       out.wall_distance = solver.wall_distance();
     }
+    return out;
+  }
+
+  // One /walls entry per wall curve: its trace, the time-accurate run's pressure RMS and the
+  // heat-transfer probe's results.
+  void output_walls(formats::Flow& out) const {
     for (std::size_t c = 0; c < wall_curves.size(); ++c) {
       const WallTrace& t = traces[c];
       formats::FlowWall wall;
@@ -528,6 +566,10 @@ class FlowStage {
       }
       out.walls.push_back(std::move(wall));
     }
+  }
+
+  // The integrals and the conditions of the run.
+  void output_integrals(formats::Flow& out) const {
     out.mass_flow = result.mass_flow;
     out.thrust_x = result.thrust_x;
     out.thrust_y = result.thrust_y;
@@ -538,8 +580,12 @@ class FlowStage {
     out.ambient_pressure = o.ambient_pressure;
     out.gamma = o.gamma;
     out.gas_constant = o.gas_constant;
-    formats::FlowConvergence& convergence = out.convergence;
-    convergence.converged = rep.converged;
+  }
+
+  // What the convergence criterion was (and which part was met), in words for
+  // /convergence@criterion.
+  std::string convergence_criterion() const {
+    const SolveReport& rep = result.report;
     std::string criterion = "density residual (RMS of residual/volume) below " +
                             text::format_number(settings.residual_drop) + " of its largest value";
     if (settings.stationary_tolerance > 0.0) {
@@ -559,7 +605,15 @@ class FlowStage {
                   text::format_number(o.time.statistics_tolerance) + " of " +
                   text::format_number(settings.reference_state[3]) + " Pa";
     }
-    convergence.criterion = criterion;
+    return criterion;
+  }
+
+  // /convergence: the outcome and its counts, where an unconverged run stopped, the
+  // time-accurate run's window and history, and the residual history.
+  void output_convergence(formats::FlowConvergence& convergence) const {
+    const SolveReport& rep = result.report;
+    convergence.converged = rep.converged;
+    convergence.criterion = convergence_criterion();
     convergence.iterations = rep.iterations;
     convergence.residual_reference = rep.residual_reference;
     convergence.linear_iterations = rep.linear_iterations;
@@ -605,6 +659,10 @@ class FlowStage {
     }
     convergence.residual_history = Eigen::Map<const h5::MatrixXdR>(
         history.data(), static_cast<Eigen::Index>(rep.history.size()), 4);
+  }
+
+  // /provenance: the command line, the options, and the input files.
+  formats::Provenance provenance() const {
     formats::Provenance prov;
     prov.command_line = o.command_line;
     // Every option as given (declared once in main.cpp), then what the run resolved from them.
@@ -615,7 +673,13 @@ class FlowStage {
     prov.inputs = {o.mesh_file};
     if (o.restart_file)
       prov.inputs.push_back(*o.restart_file);
-    formats::write_flow(o.output, out, prov);
+    return prov;
+  }
+
+  // The run's outcome in the log: why and where an unconverged run stopped, and the summary
+  // line (iterations, residual drop, mass flow, thrust, time).
+  void log_outcome() const {
+    const SolveReport& rep = result.report;
     if (!rep.converged && !rep.stop_reason.empty()) {
       log.warn("not converged: " + rep.stop_reason + "; largest density residual at (" +
                text::format_number(rep.worst_residual_at.x) + ", " +

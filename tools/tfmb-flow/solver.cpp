@@ -46,7 +46,7 @@ class ScopedThreads {
 };
 
 // A linear solve that leaves more than this fraction of its initial residual failed: the step
-// it gives is little more than a guess (see the CFL control in solve()).
+// it gives is little more than a guess (see update_cfl() and accept_or_reject_step()).
 constexpr double kLinearSolveFailed = 0.5;
 
 // Newton-Krylov phases of MatrixFree::after_limiter_freeze that may fail before a run stays
@@ -1136,43 +1136,35 @@ LinearOperator FlowSolver::matrix_free_operator(const std::vector<double>& diag_
   };
 }
 
-SolveReport FlowSolver::solve() {
-  const ScopedThreads threads(settings_.threads);
-  using clock = std::chrono::steady_clock;
-  const auto start = clock::now();
+// The running variables of solve()'s pseudo-time loop, shared by its phases so that each phase
+// is a function of the loop state rather than of 40 locals: the report being built, the step's
+// work vectors, the CFL control, the Newton phase, the best state and the stationarity test.
+// One per solve() call; nothing of it outlives the call but the report.
+struct FlowSolver::SolveLoop {
+  std::chrono::steady_clock::time_point start;
   SolveReport report;
-  const long evaluations_before = residual_evaluations_;
-  const double residual_seconds_before = residual_seconds_;
-  const int n = dual_.num_nodes;
-  turbulence_coupled_ =
-      settings_.turbulent && settings_.turbulence_coupling == TurbulenceCoupling::coupled;
-  bool coupled = turbulence_coupled_;
-  int nb = coupled ? 5 : 4;  // unknowns per node
-  std::vector<double> rhs(nb * static_cast<std::size_t>(n)), du(nb * static_cast<std::size_t>(n));
-  std::vector<double> diag_scale(n);
-  std::vector<State> u_good = u_;
-  std::vector<double> nu_good = nu_tilde_;
-  double cfl = settings_.cfl_start;
+  long evaluations_before = 0;
+  double residual_seconds_before = 0.0;
+  int n = 0;             // nodes
+  bool coupled = false;  // coupled SA Newton steps (turbulence_coupled_)
+  int nb = 4;            // unknowns per node
+  std::vector<double> rhs, du;
+  std::vector<double> diag_scale;  // V / dt per node
+  // the state before the last update, for a return after a non-physical one
+  std::vector<State> u_good;
+  std::vector<double> nu_good;
+  double cfl = 0.0;
   double cfl_scale = 1.0;
   double last_omega = 1.0;
   bool last_linear_failed = false;  // the last GMRES solve left more than half its residual
   int collapsed = 0;
   double r_previous = std::numeric_limits<double>::infinity();
-  double r_max = settings_.residual_reference;
+  double r_max = 0.0;
   double r_min = std::numeric_limits<double>::infinity();
   int last_minimum = 0;
-  double cfl_ceiling = settings_.cfl_max;
+  double cfl_ceiling = 0.0;
   int last_progress = 0;  // last new minimum or last ceiling cut
-  // Newton-Krylov steps (the matrix-free second-order operator) this iteration; with
-  // after_limiter_freeze from the iteration on which the limiter is frozen (without a limiter:
-  // on which the same criteria are met; Newton steps from a cold start did not converge the
-  // laminar pipe of PipePoiseuille in 400 iterations)
-  int newton_fallbacks = 0;  // Newton phases abandoned (see below)
-  auto newton_steps = [this, &newton_fallbacks] {
-    return settings_.order >= 2 && (settings_.matrix_free == MatrixFree::on ||
-                                    (settings_.matrix_free == MatrixFree::after_limiter_freeze &&
-                                     limiter_frozen_ && newton_fallbacks < kNewtonFallbacks));
-  };
+  int newton_fallbacks = 0;  // Newton phases abandoned (see abandon_failed_newton_phase())
   int newton_from = 0;  // first Newton-Krylov iteration of an after_limiter_freeze run
   // the state, residual and CFL number where the Newton phase began (its last good state)
   std::vector<State> newton_start_u;
@@ -1180,463 +1172,670 @@ SolveReport FlowSolver::solve() {
   double newton_start_residual = 0.0, newton_start_cfl = 0.0;
   // Eisenstat-Walker forcing: the previous Newton step's density residual and tolerance
   double newton_residual_previous = 0.0;
-  double forcing_previous = settings_.matrix_free_linear_tolerance;
+  double forcing_previous = 0.0;
   std::vector<double> residual_by_iteration;  // density residual per iteration of this solve
   int last_slow_cut = 0;
   // the state at the lowest density residual so far and its iteration, for a diverged march
   std::vector<State> best_u;
   std::vector<double> best_nu;
   int best_iteration = 0;
-  if (hold_limiter_ && limiter_stale_)
-    compute_residual(true);  // the limiter of the state set since the last solve, to hold
-  limiter_frozen_ = hold_limiter_;
-  const bool release_if_far = hold_limiter_ && release_held_limiter_;
-  hold_limiter_ = release_held_limiter_ = false;
-  std::vector<double> target_total_pressure(bcs_.size());
-  for (std::size_t b = 0; b < bcs_.size(); ++b)
-    target_total_pressure[b] = bcs_[b].total_pressure;
-  const int ramp = settings_.inflow_ramp_iterations;
-  // wall nodes and faces for the stationarity criterion
+  bool release_if_far = false;  // a held limiter, let go at the first iteration if far off
+  std::vector<double> target_total_pressure;  // per boundary condition, the ramp's end value
+  int ramp = 0;                               // inflow ramp iterations
+  // wall nodes and faces for the stationarity criterion, and their last iteration's values
   std::vector<int> wall_nodes;
   std::vector<const BoundaryFace*> wall_faces;
-  {
-    std::vector<char> on_wall(n, 0);
-    for (const auto& face : dual_.boundary_faces) {
-      const BcKind k = bcs_[face.curve].kind;
-      if (k != BcKind::slip_wall && !bcs_[face.curve].no_slip())
-        continue;
-      wall_faces.push_back(&face);
-      if (!on_wall[face.node])
-        wall_nodes.push_back(face.node);
-      on_wall[face.node] = 1;
-    }
-  }
   std::vector<double> wall_p_previous;
   Vec2 wall_force_previous{};
   int stationary_count = 0;
+  // The current iteration: its number, residual norm, record, linear solve, and the relaxation
+  // of its update (smallest omega, where, and at how many nodes the update was relaxed).
+  int it = 0;
+  State rnorm{};
+  IterationRecord rec;
+  GmresResult lin;
+  double omega_min = 1.0;
+  int omega_node = -1;
+  int limited = 0;
+};
 
-  for (int it = 1; it <= settings_.max_iterations; ++it) {
-    if (!coupled && settings_.turbulence_coupling == TurbulenceCoupling::automatic &&
-        report.residual_drop <= settings_.coupling_switch_drop && it > ramp) {
-      coupled = turbulence_coupled_ = true;
-      nb = 5;
-      rhs.assign(nb * static_cast<std::size_t>(n), 0.0);
-      du.assign(nb * static_cast<std::size_t>(n), 0.0);
-      nu_good = nu_tilde_;
-      report.coupled_from = it;
-      if (settings_.print_every > 0)
-        std::fprintf(stderr, "iter %5d  coupled SA Newton steps from here (drop %.2e)\n", it,
-                     report.residual_drop);
-    }
-    if (ramp > 0) {
-      const double f = std::min(1.0, static_cast<double>(it) / ramp);
-      for (std::size_t b = 0; b < bcs_.size(); ++b) {
-        if (bcs_[b].kind != BcKind::stagnation_inflow)
-          continue;
-        const double p_start =
-            std::min(settings_.inflow_ramp_start_pressure, target_total_pressure[b]);
-        bcs_[b].total_pressure = p_start + f * (target_total_pressure[b] - p_start);
-      }
-    }
+// The pseudo-time march: each iteration evaluates the residual of the current state, lets the
+// safeguards act on it (returns to an earlier state, CFL ceiling, limiter freezing), sets the
+// CFL number, tests convergence, and takes one implicit step. Each phase is a member function
+// below, in the order they run.
+SolveReport FlowSolver::solve() {
+  const ScopedThreads threads(settings_.threads);
+  SolveLoop s;
+  start_run(s);
+  for (s.it = 1; s.it <= settings_.max_iterations; ++s.it) {
+    switch_turbulence_coupling(s);
+    ramp_inflow(s);
     compute_residual(!limiter_frozen_);
-    State rnorm = residual_norm();
-    if (!std::isfinite(rnorm[0] + rnorm[1] + rnorm[2] + rnorm[3])) {
-      // Non-physical residual: go back to the last good state with a smaller CFL.
-      u_ = u_good;
-      if (coupled)
-        nu_tilde_ = nu_good;
-      cfl_scale *= 0.1;
-      cfl = std::max(cfl * 0.1, 1e-3);
-      ++report.backoffs;
-      if (report.backoffs > 20)
+    s.rnorm = residual_norm();
+    if (!std::isfinite(s.rnorm[0] + s.rnorm[1] + s.rnorm[2] + s.rnorm[3])) {
+      back_off_non_finite(s);
+      if (s.report.backoffs > 20)
         break;
       continue;
     }
-    if (it == 1 && release_if_far && limiter_frozen_ && r_max > 0.0 &&
-        rnorm[0] > settings_.held_limiter_max_drop * r_max) {
-      limiter_frozen_ = false;  // a held limiter far from its state (held_limiter_max_drop)
-      if (settings_.print_every > 0)
-        std::fprintf(stderr,
-                     "iter %5d  limiter released: residual drop %.2e at the start is above "
-                     "%.2e, too far from the state it was held at\n",
-                     it, rnorm[0] / r_max, settings_.held_limiter_max_drop);
-    }
-    if (rnorm[0] > r_max)
-      last_progress = it;  // still in the start-up transient
-    r_max = std::max(r_max, rnorm[0]);
-    // (a start with no density residual at all, e.g. fluid at rest behind a pressure jump,
-    // has no reference yet)
-    report.residual_drop = r_max > 0.0 ? rnorm[0] / r_max : 1.0;
-    // (a zero residual, the uniform state of a cold start, is no minimum to make progress from:
-    // counted as one, it made every later iteration a stall and halved the CFL ceiling every
-    // cfl_stall_iterations)
-    if (rnorm[0] < r_min && rnorm[0] > 0.0) {
-      r_min = rnorm[0];
-      last_minimum = it;
-      last_progress = it;
-      best_u = u_;
-      best_nu = nu_tilde_;
-      best_iteration = it;
-    } else if (newton_from == 0 && cfl < settings_.cfl_start && rnorm[0] > kDivergedRise * r_min &&
-               !best_u.empty() && report.best_state_restarts < kBestStateRestarts) {
-      // The march diverged: relaxation and SER have pulled the CFL below its start value while
-      // the residual ran away from its best. Left alone it does not come back (nasa-2dcd NPR
-      // 2.46, defect correction with a live limiter after three failed Newton phases: one wall
-      // node at the separation relaxed to nothing, the CFL fell to 1e-2 and the residual rose
-      // from 2e4 to 1e10 over 600 iterations). Back to the best state, limiter live, the CFL
-      // number from its start value and half the ceiling.
-      ++report.best_state_restarts;
-      cfl_ceiling = std::max(settings_.cfl_start, 0.5 * cfl_ceiling);
-      if (settings_.print_every > 0)
-        std::fprintf(stderr,
-                     "iter %5d  diverged (residual %.2e, %.0f times its best, CFL %.2e): back to "
-                     "the state of iteration %d, CFL ceiling %.2e\n",
-                     it, rnorm[0], rnorm[0] / r_min, cfl, best_iteration, cfl_ceiling);
-      u_ = best_u;
-      if (!best_nu.empty())
-        nu_tilde_ = best_nu;
-      limiter_frozen_ = false;
-      cfl = settings_.cfl_start;
-      cfl_scale = 1.0;
-      last_progress = last_minimum = it;
+    release_held_limiter_if_far(s);
+    if (track_residual(s))
+      continue;  // diverged: back to the best state
+    cut_cfl_ceiling_on_stall(s);
+    freeze_limiter(s);
+    if (abandon_failed_newton_phase(s))
       continue;
-    }
-    if (settings_.cfl_stall_iterations > 0 && it - last_progress > settings_.cfl_stall_iterations) {
-      // only a stall at (near) the ceiling is a large-CFL limit cycle; a low CFL is SER's doing
-      if (cfl >= 0.5 * cfl_ceiling)
-        cfl_ceiling = std::max(0.5 * cfl_ceiling, settings_.cfl_start);
-      last_progress = it;
-    }
-    residual_by_iteration.push_back(rnorm[0]);
-    const int window = 2 * settings_.cfl_stall_iterations;
-    if (newton_steps() && window > 0 && it - last_slow_cut >= window &&
-        static_cast<int>(residual_by_iteration.size()) > window &&
-        rnorm[0] > 0.5 * residual_by_iteration[residual_by_iteration.size() - 1 - window]) {
-      // Matrix-free (near-Newton) steps: a residual creeping down by less than a factor 2 over
-      // the window at the ceiling is as much a stall as none at all, but sets a new minimum
-      // every few iterations. Measured on nasa-2dcd SMOKE at NPR 2.412: 9.8 -> 7.7 over 250
-      // iterations at CFL 1e4; the same state restarted (ceiling cut to 625 on the way) fell
-      // to 2.8e-7 in 200.
-      if (cfl >= 0.5 * cfl_ceiling)
-        cfl_ceiling = std::max(0.5 * cfl_ceiling, settings_.cfl_start);
-      last_slow_cut = it;
-    }
-    if ((settings_.limiter_freeze_drop > 0.0 &&
-         report.residual_drop < settings_.limiter_freeze_drop) ||
-        (settings_.limiter_stall_iterations > 0 && newton_fallbacks < kNewtonFallbacks &&
-         it - last_minimum > settings_.limiter_stall_iterations)) {
-      limiter_frozen_ = true;
-    }
-    if (newton_from > 0 && settings_.matrix_free == MatrixFree::after_limiter_freeze &&
-        (rnorm[0] > 3.0 * newton_start_residual ||
-         (it - newton_from >= std::max(settings_.limiter_stall_iterations, 10) &&
-          rnorm[0] > newton_start_residual))) {
-      // The Newton phase failed: the limiter froze inside a transient (nasa-2dcd NPR 2.412: the
-      // stall rule froze it while the separation still moved, and the Newton steps relaxed to
-      // nothing behind the lips). Back to its start, limiter live, defect correction, and a new
-      // stall count before the limiter may freeze again. After the last allowed failure the
-      // stall rule freezes it no more: there, defect correction with the live limiter converged
-      // (423 iterations) where the frozen one had not after 770.
-      ++newton_fallbacks;
-      if (settings_.print_every > 0)
-        std::fprintf(stderr,
-                     "iter %5d  Newton-Krylov phase from iteration %d abandoned (residual %.2e "
-                     "against %.2e at its start): back to that state, limiter live%s\n",
-                     it, newton_from, rnorm[0], newton_start_residual,
-                     newton_fallbacks < kNewtonFallbacks ? "" : ", defect correction from here on");
-      u_ = newton_start_u;
-      if (!newton_start_nu.empty())
-        nu_tilde_ = newton_start_nu;
-      limiter_frozen_ = false;
-      newton_from = 0;
-      last_minimum = last_progress = it;
-      cfl_scale *= 0.5;
-      cfl = std::max(settings_.cfl_start, 0.5 * newton_start_cfl);
-      report.newton_fallbacks = newton_fallbacks;
-      continue;
-    }
-    if (it > 1) {
-      const double ser =
-          r_max > 0.0 && rnorm[0] > 0.0
-              ? settings_.cfl_start * cfl_scale * std::pow(r_max / rnorm[0], settings_.ser_exponent)
-              : settings_.cfl_start * cfl_scale;
-      double adaptive = 0.0;
-      if (settings_.cfl_adaptive_growth > 1.0) {
-        // grow while the Newton updates are taken whole and the residual does not run away
-        const bool healthy = last_omega >= 1.0 && !last_linear_failed &&
-                             rnorm[0] <= settings_.cfl_adaptive_residual_rise * r_previous;
-        adaptive = healthy ? cfl * settings_.cfl_adaptive_growth : cfl * 0.7;
-      }
-      cfl = std::min({std::max(ser, adaptive), cfl * settings_.cfl_growth, cfl_ceiling});
-      cfl = std::max(cfl, 1e-3);
-    }
-    r_previous = rnorm[0];
-    IterationRecord rec;
-    rec.iteration = it;
-    rec.residual = rnorm;
-    rec.cfl = cfl;
-    report.residual_reference = r_max;
-    bool stationary = false;
-    if (settings_.stationary_tolerance > 0.0 && !wall_nodes.empty()) {
-      std::vector<double> wall_p(wall_nodes.size());
-      for (std::size_t k = 0; k < wall_nodes.size(); ++k)
-        wall_p[k] = w_[wall_nodes[k]][3];
-      Vec2 force{};
-      for (const BoundaryFace* face : wall_faces)
-        force = force + w_[face->node][3] * face->normal;
-      if (wall_p_previous.size() == wall_p.size()) {
-        double dp = 0.0;
-        for (std::size_t k = 0; k < wall_p.size(); ++k)
-          dp = std::max(dp, std::abs(wall_p[k] - wall_p_previous[k]));
-        report.wall_pressure_change = dp / settings_.reference_state[3];
-        report.wall_force_change =
-            norm(force - wall_force_previous) / std::max(norm(force), 1e-300);
-        const bool small = report.wall_pressure_change < settings_.stationary_tolerance &&
-                           report.wall_force_change < settings_.stationary_tolerance;
-        // A step that could not move the state is no sign of stationarity: a linear solve that
-        // made no headway (GMRES stagnating), a CFL number collapsed below its start value, or
-        // updates relaxed away in a sizeable region. (A diverged second-order run at NPR 2.412,
-        // frozen at CFL 3e-3, was otherwise reported converged.)
-        const bool moving = report.history.empty() ||
-                            (report.history.back().linear_residual <= 0.5 &&
-                             report.history.back().cfl >= settings_.cfl_start && last_omega >= 0.5);
-        stationary_count = small && moving ? stationary_count + 1 : 0;
-        stationary = stationary_count >= settings_.stationary_iterations && it > ramp;
-      }
-      wall_p_previous = std::move(wall_p);
-      wall_force_previous = force;
-    }
-    const bool past_transient = !settings_.residual_drop_at_cfl_ceiling || cfl >= cfl_ceiling;
-    if (stationary ||
-        (r_max > 0.0 && report.residual_drop <= settings_.residual_drop && it > ramp &&
-         (it > 1 || settings_.residual_reference > 0.0) && past_transient)) {
-      report.converged_by_stationarity =
-          stationary && report.residual_drop > settings_.residual_drop;
-      report.converged = true;
-      rec.wall_time = std::chrono::duration<double>(clock::now() - start).count();
-      report.history.push_back(rec);
-      report.iterations = it - 1;
+    update_cfl(s);
+    begin_record(s);
+    if (check_convergence(s))
       break;
-    }
-
-    for (int i = 0; i < n; ++i)
-      diag_scale[i] = spectral_radius_[i] / cfl;  // V / dt
-    assemble_jacobian(diag_scale);
-    if (coupled) {
-      rec.turbulence_residual = turbulence_residual_norm();
-      turbulence_residual(true, &diag_scale);
-      assemble_coupled_jacobian();
-    }
-    for (int i = 0; i < n; ++i) {
-      double* rhs_i = rhs.data() + nb * static_cast<std::size_t>(i);
-      for (int v = 0; v < 4; ++v)
-        rhs_i[v] = fixed_node_[i] ? fixed_u_[i][v] - u_[i][v] : -res_[i][v];
-      if (coupled)
-        rhs_i[4] = -sa_row_scale_ * sa_res_[i];
-      const int b = wall_node_bc_[i];
-      if (b >= 0) {
-        // strong conditions: drive momentum (and rho E - rho cv Tw) to zero
-        rhs_i[1] = -u_[i][1];
-        rhs_i[2] = -u_[i][2];
-        if (bcs_[b].kind == BcKind::wall_isothermal) {
-          rhs_i[3] = -(u_[i][3] - u_[i][0] * gas_.cv() * wall_temperature_at(b, i));
-        }
-      }
-    }
-    ilu_.factorize(system_matrix(), settings_.ilu_partitions, settings_.ilu_fill_level);
-    GmresResult lin;
-    if (newton_steps()) {
-      if (newton_from == 0 && settings_.matrix_free == MatrixFree::after_limiter_freeze) {
-        newton_from = report.newton_from = it;
-        newton_start_u = u_;
-        newton_start_nu = nu_tilde_;
-        newton_start_residual = r_previous;
-        newton_start_cfl = cfl;
-        if (settings_.print_every > 0)
-          std::fprintf(stderr,
-                       "iter %5d  limiter frozen: Newton-Krylov steps from here (drop %.2e)\n", it,
-                       report.residual_drop);
-      }
-      double forcing = settings_.matrix_free_linear_tolerance;
-      if (settings_.eisenstat_walker && newton_residual_previous > 0.0) {
-        // Eisenstat and Walker 1996 (SIAM J. Sci. Comput. 17:16), choice 2 with gamma 0.9,
-        // alpha 2 and its safeguard: solve tighter as the residual falls faster, so the
-        // inexact Newton steps converge superlinearly instead of at the fixed tolerance's rate
-        const double ratio = r_previous / newton_residual_previous;
-        forcing = 0.9 * ratio * ratio;
-        const double safeguard = 0.9 * forcing_previous * forcing_previous;
-        if (safeguard > 0.1)
-          forcing = std::max(forcing, safeguard);
-        forcing = std::clamp(forcing, settings_.eisenstat_walker_min,
-                             settings_.matrix_free_linear_tolerance);
-      }
-      newton_residual_previous = r_previous;
-      forcing_previous = forcing;
-      // no restart: restarted GMRES(20) stagnated outright (relative residual 1.0 after 80
-      // iterations) on nasa-2dcd at CFL 1e4 where the full basis converged in 137-183
-      lin = gmres(matrix_free_operator(diag_scale), ilu_, rhs, du, forcing,
-                  std::max(settings_.gmres_restart, settings_.gmres_max_iterations),
-                  settings_.gmres_max_iterations, gmres_workspace_);
-      compute_residual(false);  // back to the state's own residual, gradients and viscosities
-    } else {
-      lin = gmres(system_matrix(), ilu_, rhs, du, settings_.linear_tolerance,
-                  settings_.gmres_restart, settings_.gmres_max_iterations, gmres_workspace_);
-    }
-    rec.linear_iterations = lin.iterations;
-    rec.linear_residual = lin.relative_residual;
-    last_linear_failed = !(lin.relative_residual <= kLinearSolveFailed);
-    report.linear_iterations += lin.iterations;
-
-    // Relaxation, node by node: limit the relative change of density and pressure, and leave
-    // a node unchanged if even the limited update is not physical. Local relaxation acts like
-    // a local time step: a near-vacuum corner does not hold back the rest of the domain.
-    double omega_min = 1.0;
-    int omega_node = -1;
-    int limited = 0;
-    u_good = u_;
-    if (coupled)
-      nu_good = nu_tilde_;
-    for (int i = 0; i < n; ++i) {
-      const double* du_i = du.data() + nb * static_cast<std::size_t>(i);
-      State un = u_[i];
-      for (int v = 0; v < 4; ++v)
-        un[v] += du_i[v];
-      const State wn = gas_.primitive(un);
-      const State& wo = w_[i];
-      const double change =
-          std::max(std::abs(wn[0] - wo[0]) / wo[0], std::abs(wn[3] - wo[3]) / wo[3]);
-      double omega_i = 1.0;
-      if (!std::isfinite(change))
-        omega_i = 0.0;
-      else if (change > settings_.max_relative_update)
-        omega_i = settings_.max_relative_update / change;
-      if (coupled && wall_node_bc_[i] < 0) {
-        // nu_tilde may grow by a factor 1 + max_turbulence_update per step and fall by the
-        // same fraction of its scale |nu_tilde| + nu: the Newton step of the source terms
-        // overshoots where production outruns destruction (a physicality-based step limit)
-        const double scale = std::abs(nu_tilde_[i]) + sa_nu_[i];
-        const double change_nu = std::abs(du_i[4]) / scale;
-        if (!std::isfinite(change_nu))
-          omega_i = 0.0;
-        else if (change_nu * omega_i > settings_.max_turbulence_update)
-          omega_i = settings_.max_turbulence_update / change_nu;
-      }
-      // The primitive change is not linear in omega (kinetic energy): halve omega until the
-      // relaxed state is physical and within the allowed change, rather than freezing the node
-      // (a frozen node near a near-vacuum lip corner never recovers, its residual grows and the
-      // SER ramp then collapses the CFL everywhere).
-      for (int halving = 0;; ++halving) {
-        for (int v = 0; v < 4; ++v)
-          un[v] = u_[i][v] + omega_i * du_i[v];
-        const double p_new =
-            (gas_.gamma - 1.0) * (un[3] - 0.5 * (un[1] * un[1] + un[2] * un[2]) / un[0]);
-        const bool ok = un[0] > 0.0 && p_new > kPressureFloor * un[3] &&
-                        std::abs(p_new - wo[3]) <= 2.0 * settings_.max_relative_update * wo[3];
-        if (ok)
-          break;
-        if (halving == 12 || omega_i == 0.0) {
-          omega_i = 0.0;
-          un = u_[i];
-          break;
-        }
-        omega_i *= 0.5;
-      }
-      u_[i] = un;
-      if (coupled) {
-        // the same fraction of the Newton step for nu_tilde; strong 0 on no-slip walls
-        if (wall_node_bc_[i] >= 0)
-          nu_tilde_[i] = 0.0;
-        else if (std::isfinite(du_i[4]))
-          nu_tilde_[i] += omega_i * du_i[4];
-      }
-      if (omega_i < 1.0)
-        ++limited;
-      if (omega_i < omega_min) {
-        omega_min = omega_i;
-        omega_node = i;
-      }
-    }
-    apply_strong_conditions(u_);
-    report.least_relaxation = omega_min;
-    if (omega_node >= 0)
-      report.least_relaxed_at = dual_.coords[omega_node];
-    if (settings_.turbulent && !coupled)
-      rec.turbulence_residual = turbulence_step(cfl);
-    const double limited_fraction = static_cast<double>(limited) / n;
-    rec.relaxation = omega_min;
-    // CFL control sees a limited update only if it concerns more than a few nodes
-    last_omega = limited_fraction <= settings_.relaxed_fraction_tolerated ? 1.0 : omega_min;
-    if (!physical(u_)) {
-      u_ = u_good;
-      if (coupled)
-        nu_tilde_ = nu_good;
-      cfl_scale *= 0.1;
-      cfl *= 0.1;
-      ++report.backoffs;
-    } else if ((limited_fraction > settings_.relaxed_fraction_tolerated && omega_min < 0.5) ||
-               last_linear_failed) {
-      // the linearisation was far off in a sizeable region, or the linear solve could not
-      // solve it: slow the ramp down. (A failed solve moves the state little, so neither the
-      // relaxation nor the residual sees it; NPARC 0.75 on 480 x 120 took 22 such steps at CFL
-      // 1e4 with GMRES at a relative residual of 1.0, then blew up and took 60 to recover.)
-      cfl_scale *= 0.5;
-      cfl *= 0.5;
-    }
-    const double omega = omega_min;
-    rec.wall_time = std::chrono::duration<double>(clock::now() - start).count();
-    report.history.push_back(rec);
-    report.iterations = it;
-    if (settings_.print_every > 0 && (it % settings_.print_every == 0 || it == 1)) {
-      std::fprintf(
-          stderr, "iter %5d  res(rho) %.3e  drop %.2e  cfl %.2e  omega %.2f  lin %3d (%.1e)", it,
-          rnorm[0], report.residual_drop, cfl, omega, lin.iterations, lin.relative_residual);
-      if (settings_.turbulent)
-        std::fprintf(stderr, "  res(nu_t) %.2e", rec.turbulence_residual);
-      // where the density residual is largest: the first thing to look at when it stalls
-      int worst = 0;
-      for (int i = 1; i < n; ++i) {
-        if (std::abs(res_[i][0]) / dual_.volume[i] > std::abs(res_[worst][0]) / dual_.volume[worst])
-          worst = i;
-      }
-      std::fprintf(stderr, "  max at (%.4g, %.4g)", dual_.coords[worst].x, dual_.coords[worst].y);
-      if (omega_node >= 0) {
-        std::fprintf(stderr, "  omega min at (%.4g, %.4g)", dual_.coords[omega_node].x,
-                     dual_.coords[omega_node].y);
-      }
-      std::fprintf(stderr, "\n");
-    }
-    if (report.backoffs > 20)
-      break;
-    // Give up when the CFL has collapsed: the pseudo-time march no longer moves.
-    collapsed = cfl < 1e-3 * settings_.cfl_start ? collapsed + 1 : 0;
-    if (collapsed > 10)
+    linear_step(s);
+    relax_update(s);
+    if (settings_.turbulent && !s.coupled)
+      s.rec.turbulence_residual = turbulence_step(s.cfl);  // segregated SA, after the mean flow
+    accept_or_reject_step(s);
+    report_progress(s);
+    if (march_stopped(s))
       break;
   }
+  finish_run(s);
+  return std::move(s.report);
+}
+
+// Everything the loop needs before its first iteration: the counters the report takes
+// differences of, the step's vectors, the CFL control's start values, the limiter held by
+// hold_limiter(), the inflow ramp's targets and the walls of the stationarity criterion.
+void FlowSolver::start_run(SolveLoop& s) {
+  s.start = std::chrono::steady_clock::now();
+  s.evaluations_before = residual_evaluations_;
+  s.residual_seconds_before = residual_seconds_;
+  s.n = dual_.num_nodes;
+  const int n = s.n;
+  turbulence_coupled_ =
+      settings_.turbulent && settings_.turbulence_coupling == TurbulenceCoupling::coupled;
+  s.coupled = turbulence_coupled_;
+  s.nb = s.coupled ? 5 : 4;
+  s.rhs.resize(s.nb * static_cast<std::size_t>(n));
+  s.du.resize(s.nb * static_cast<std::size_t>(n));
+  s.diag_scale.resize(n);
+  s.u_good = u_;
+  s.nu_good = nu_tilde_;
+  s.cfl = settings_.cfl_start;
+  s.r_max = settings_.residual_reference;
+  s.cfl_ceiling = settings_.cfl_max;
+  s.forcing_previous = settings_.matrix_free_linear_tolerance;
+  if (hold_limiter_ && limiter_stale_)
+    compute_residual(true);  // the limiter of the state set since the last solve, to hold
+  limiter_frozen_ = hold_limiter_;
+  s.release_if_far = hold_limiter_ && release_held_limiter_;
+  hold_limiter_ = release_held_limiter_ = false;
+  s.target_total_pressure.resize(bcs_.size());
+  for (std::size_t b = 0; b < bcs_.size(); ++b)
+    s.target_total_pressure[b] = bcs_[b].total_pressure;
+  s.ramp = settings_.inflow_ramp_iterations;
+  // wall nodes and faces for the stationarity criterion
+  std::vector<char> on_wall(n, 0);
+  for (const auto& face : dual_.boundary_faces) {
+    const BcKind k = bcs_[face.curve].kind;
+    if (k != BcKind::slip_wall && !bcs_[face.curve].no_slip())
+      continue;
+    s.wall_faces.push_back(&face);
+    if (!on_wall[face.node])
+      s.wall_nodes.push_back(face.node);
+    on_wall[face.node] = 1;
+  }
+}
+
+// Newton-Krylov steps (the matrix-free second-order operator) this iteration, rather than
+// defect correction with the first-order Jacobian; with after_limiter_freeze from the iteration
+// on which the limiter is frozen (without a limiter: on which the same criteria are met; Newton
+// steps from a cold start did not converge the laminar pipe of PipePoiseuille in 400
+// iterations), until kNewtonFallbacks of its phases have failed.
+bool FlowSolver::newton_krylov_step(const SolveLoop& s) const {
+  return settings_.order >= 2 && (settings_.matrix_free == MatrixFree::on ||
+                                  (settings_.matrix_free == MatrixFree::after_limiter_freeze &&
+                                   limiter_frozen_ && s.newton_fallbacks < kNewtonFallbacks));
+}
+
+// Automatic SA coupling: segregated steps through the start-up transient, coupled Newton steps
+// (5 unknowns per node) from the iteration on which the density residual has fallen by
+// coupling_switch_drop (see SolverSettings::turbulence_coupling).
+void FlowSolver::switch_turbulence_coupling(SolveLoop& s) {
+  if (!s.coupled && settings_.turbulence_coupling == TurbulenceCoupling::automatic &&
+      s.report.residual_drop <= settings_.coupling_switch_drop && s.it > s.ramp) {
+    s.coupled = turbulence_coupled_ = true;
+    s.nb = 5;
+    s.rhs.assign(s.nb * static_cast<std::size_t>(s.n), 0.0);
+    s.du.assign(s.nb * static_cast<std::size_t>(s.n), 0.0);
+    s.nu_good = nu_tilde_;
+    s.report.coupled_from = s.it;
+    if (settings_.print_every > 0)
+      std::fprintf(stderr, "iter %5d  coupled SA Newton steps from here (drop %.2e)\n", s.it,
+                   s.report.residual_drop);
+  }
+}
+
+// The valve opening of a jet started from rest: every stagnation inflow's total pressure at
+// this iteration of the ramp (SolverSettings::inflow_ramp_iterations).
+void FlowSolver::ramp_inflow(const SolveLoop& s) {
+  if (s.ramp <= 0)
+    return;
+  const double f = std::min(1.0, static_cast<double>(s.it) / s.ramp);
+  for (std::size_t b = 0; b < bcs_.size(); ++b) {
+    if (bcs_[b].kind != BcKind::stagnation_inflow)
+      continue;
+    const double p_start =
+        std::min(settings_.inflow_ramp_start_pressure, s.target_total_pressure[b]);
+    bcs_[b].total_pressure = p_start + f * (s.target_total_pressure[b] - p_start);
+  }
+}
+
+// Non-physical residual: go back to the last good state with a smaller CFL.
+void FlowSolver::back_off_non_finite(SolveLoop& s) {
+  u_ = s.u_good;
+  if (s.coupled)
+    nu_tilde_ = s.nu_good;
+  s.cfl_scale *= 0.1;
+  s.cfl = std::max(s.cfl * 0.1, 1e-3);
+  ++s.report.backoffs;
+}
+
+// A restart's held limiter is let go at the first iteration when the state is far from the one
+// it was held at (SolverSettings::held_limiter_max_drop).
+void FlowSolver::release_held_limiter_if_far(const SolveLoop& s) {
+  if (s.it == 1 && s.release_if_far && limiter_frozen_ && s.r_max > 0.0 &&
+      s.rnorm[0] > settings_.held_limiter_max_drop * s.r_max) {
+    limiter_frozen_ = false;  // a held limiter far from its state (held_limiter_max_drop)
+    if (settings_.print_every > 0)
+      std::fprintf(stderr,
+                   "iter %5d  limiter released: residual drop %.2e at the start is above "
+                   "%.2e, too far from the state it was held at\n",
+                   s.it, s.rnorm[0] / s.r_max, settings_.held_limiter_max_drop);
+  }
+}
+
+// The density residual against the run's reference (its largest, or the one passed in) and its
+// best so far, whose state is kept; a march that has run away from that best goes back to it.
+// True when it did (the iteration ends there).
+bool FlowSolver::track_residual(SolveLoop& s) {
+  const double r = s.rnorm[0];
+  if (r > s.r_max)
+    s.last_progress = s.it;  // still in the start-up transient
+  s.r_max = std::max(s.r_max, r);
+  // (a start with no density residual at all, e.g. fluid at rest behind a pressure jump,
+  // has no reference yet)
+  s.report.residual_drop = s.r_max > 0.0 ? r / s.r_max : 1.0;
+  // (a zero residual, the uniform state of a cold start, is no minimum to make progress from:
+  // counted as one, it made every later iteration a stall and halved the CFL ceiling every
+  // cfl_stall_iterations)
+  if (r < s.r_min && r > 0.0) {
+    s.r_min = r;
+    s.last_minimum = s.it;
+    s.last_progress = s.it;
+    s.best_u = u_;
+    s.best_nu = nu_tilde_;
+    s.best_iteration = s.it;
+  } else if (s.newton_from == 0 && s.cfl < settings_.cfl_start && r > kDivergedRise * s.r_min &&
+             !s.best_u.empty() && s.report.best_state_restarts < kBestStateRestarts) {
+    // The march diverged: relaxation and SER have pulled the CFL below its start value while
+    // the residual ran away from its best. Left alone it does not come back (nasa-2dcd NPR
+    // 2.46, defect correction with a live limiter after three failed Newton phases: one wall
+    // node at the separation relaxed to nothing, the CFL fell to 1e-2 and the residual rose
+    // from 2e4 to 1e10 over 600 iterations). Back to the best state, limiter live, the CFL
+    // number from its start value and half the ceiling.
+    ++s.report.best_state_restarts;
+    s.cfl_ceiling = std::max(settings_.cfl_start, 0.5 * s.cfl_ceiling);
+    if (settings_.print_every > 0)
+      std::fprintf(stderr,
+                   "iter %5d  diverged (residual %.2e, %.0f times its best, CFL %.2e): back to "
+                   "the state of iteration %d, CFL ceiling %.2e\n",
+                   s.it, r, r / s.r_min, s.cfl, s.best_iteration, s.cfl_ceiling);
+    u_ = s.best_u;
+    if (!s.best_nu.empty())
+      nu_tilde_ = s.best_nu;
+    limiter_frozen_ = false;
+    s.cfl = settings_.cfl_start;
+    s.cfl_scale = 1.0;
+    s.last_progress = s.last_minimum = s.it;
+    return true;
+  }
+  return false;
+}
+
+// Halve the CFL ceiling on a stall at (near) it: no new minimum for cfl_stall_iterations, or,
+// with Newton-Krylov steps, a residual creeping down by less than a factor 2 over twice that
+// (see SolverSettings::cfl_stall_iterations).
+void FlowSolver::cut_cfl_ceiling_on_stall(SolveLoop& s) {
+  const int it = s.it;
+  if (settings_.cfl_stall_iterations > 0 && it - s.last_progress > settings_.cfl_stall_iterations) {
+    // only a stall at (near) the ceiling is a large-CFL limit cycle; a low CFL is SER's doing
+    if (s.cfl >= 0.5 * s.cfl_ceiling)
+      s.cfl_ceiling = std::max(0.5 * s.cfl_ceiling, settings_.cfl_start);
+    s.last_progress = it;
+  }
+  s.residual_by_iteration.push_back(s.rnorm[0]);
+  const int window = 2 * settings_.cfl_stall_iterations;
+  if (newton_krylov_step(s) && window > 0 && it - s.last_slow_cut >= window &&
+      static_cast<int>(s.residual_by_iteration.size()) > window &&
+      s.rnorm[0] > 0.5 * s.residual_by_iteration[s.residual_by_iteration.size() - 1 - window]) {
+    // Matrix-free (near-Newton) steps: a residual creeping down by less than a factor 2 over
+    // the window at the ceiling is as much a stall as none at all, but sets a new minimum
+    // every few iterations. Measured on nasa-2dcd SMOKE at NPR 2.412: 9.8 -> 7.7 over 250
+    // iterations at CFL 1e4; the same state restarted (ceiling cut to 625 on the way) fell
+    // to 2.8e-7 in 200.
+    if (s.cfl >= 0.5 * s.cfl_ceiling)
+      s.cfl_ceiling = std::max(0.5 * s.cfl_ceiling, settings_.cfl_start);
+    s.last_slow_cut = it;
+  }
+}
+
+// Freeze the limiter once the residual has dropped by limiter_freeze_drop or stopped reaching
+// new minima (limiter chatter near shocks stalls convergence; the frozen limiter is a fixed,
+// valid scheme). With after_limiter_freeze this starts the Newton-Krylov phase.
+void FlowSolver::freeze_limiter(const SolveLoop& s) {
+  if ((settings_.limiter_freeze_drop > 0.0 &&
+       s.report.residual_drop < settings_.limiter_freeze_drop) ||
+      (settings_.limiter_stall_iterations > 0 && s.newton_fallbacks < kNewtonFallbacks &&
+       s.it - s.last_minimum > settings_.limiter_stall_iterations)) {
+    limiter_frozen_ = true;
+  }
+}
+
+// A Newton-Krylov phase whose residual rose well above, or stayed above, its start is given up
+// for defect correction from its start state. True when it was (the iteration ends there).
+bool FlowSolver::abandon_failed_newton_phase(SolveLoop& s) {
+  const int it = s.it;
+  if (!(s.newton_from > 0 && settings_.matrix_free == MatrixFree::after_limiter_freeze &&
+        (s.rnorm[0] > 3.0 * s.newton_start_residual ||
+         (it - s.newton_from >= std::max(settings_.limiter_stall_iterations, 10) &&
+          s.rnorm[0] > s.newton_start_residual)))) {
+    return false;
+  }
+  // The Newton phase failed: the limiter froze inside a transient (nasa-2dcd NPR 2.412: the
+  // stall rule froze it while the separation still moved, and the Newton steps relaxed to
+  // nothing behind the lips). Back to its start, limiter live, defect correction, and a new
+  // stall count before the limiter may freeze again. After the last allowed failure the
+  // stall rule freezes it no more: there, defect correction with the live limiter converged
+  // (423 iterations) where the frozen one had not after 770.
+  ++s.newton_fallbacks;
+  if (settings_.print_every > 0)
+    std::fprintf(stderr,
+                 "iter %5d  Newton-Krylov phase from iteration %d abandoned (residual %.2e "
+                 "against %.2e at its start): back to that state, limiter live%s\n",
+                 it, s.newton_from, s.rnorm[0], s.newton_start_residual,
+                 s.newton_fallbacks < kNewtonFallbacks ? "" : ", defect correction from here on");
+  u_ = s.newton_start_u;
+  if (!s.newton_start_nu.empty())
+    nu_tilde_ = s.newton_start_nu;
+  limiter_frozen_ = false;
+  s.newton_from = 0;
+  s.last_minimum = s.last_progress = it;
+  s.cfl_scale *= 0.5;
+  s.cfl = std::max(settings_.cfl_start, 0.5 * s.newton_start_cfl);
+  s.report.newton_fallbacks = s.newton_fallbacks;
+  return true;
+}
+
+// This iteration's CFL number: the larger of switched evolution relaxation (Mulder and van
+// Leer 1985) and the adaptive law, limited by cfl_growth and the ceiling (from the second
+// iteration on); then this residual becomes the previous one for the next iteration.
+void FlowSolver::update_cfl(SolveLoop& s) {
+  const double r = s.rnorm[0];
+  if (s.it > 1) {
+    const double ser = s.r_max > 0.0 && r > 0.0 ? settings_.cfl_start * s.cfl_scale *
+                                                      std::pow(s.r_max / r, settings_.ser_exponent)
+                                                : settings_.cfl_start * s.cfl_scale;
+    double adaptive = 0.0;
+    if (settings_.cfl_adaptive_growth > 1.0) {
+      // grow while the Newton updates are taken whole and the residual does not run away
+      const bool healthy = s.last_omega >= 1.0 && !s.last_linear_failed &&
+                           r <= settings_.cfl_adaptive_residual_rise * s.r_previous;
+      adaptive = healthy ? s.cfl * settings_.cfl_adaptive_growth : s.cfl * 0.7;
+    }
+    s.cfl = std::min({std::max(ser, adaptive), s.cfl * settings_.cfl_growth, s.cfl_ceiling});
+    s.cfl = std::max(s.cfl, 1e-3);
+  }
+  s.r_previous = r;
+}
+
+// The iteration's history record, from its residual and CFL number (the step fills in the
+// rest).
+void FlowSolver::begin_record(SolveLoop& s) {
+  s.rec = IterationRecord{};
+  s.rec.iteration = s.it;
+  s.rec.residual = s.rnorm;
+  s.rec.cfl = s.cfl;
+  s.report.residual_reference = s.r_max;
+}
+
+// Wall-pressure stationarity (SolverSettings::stationary_tolerance): every wall pressure and the
+// wall pressure force changing by less than the tolerance per iteration, for
+// stationary_iterations steps that moved the state.
+bool FlowSolver::wall_stationary(SolveLoop& s) {
+  SolveReport& report = s.report;
+  bool stationary = false;
+  if (settings_.stationary_tolerance > 0.0 && !s.wall_nodes.empty()) {
+    std::vector<double> wall_p(s.wall_nodes.size());
+    for (std::size_t k = 0; k < s.wall_nodes.size(); ++k)
+      wall_p[k] = w_[s.wall_nodes[k]][3];
+    Vec2 force{};
+    for (const BoundaryFace* face : s.wall_faces)
+      force = force + w_[face->node][3] * face->normal;
+    if (s.wall_p_previous.size() == wall_p.size()) {
+      double dp = 0.0;
+      for (std::size_t k = 0; k < wall_p.size(); ++k)
+        dp = std::max(dp, std::abs(wall_p[k] - s.wall_p_previous[k]));
+      report.wall_pressure_change = dp / settings_.reference_state[3];
+      report.wall_force_change =
+          norm(force - s.wall_force_previous) / std::max(norm(force), 1e-300);
+      const bool small = report.wall_pressure_change < settings_.stationary_tolerance &&
+                         report.wall_force_change < settings_.stationary_tolerance;
+      // A step that could not move the state is no sign of stationarity: a linear solve that
+      // made no headway (GMRES stagnating), a CFL number collapsed below its start value, or
+      // updates relaxed away in a sizeable region. (A diverged second-order run at NPR 2.412,
+      // frozen at CFL 3e-3, was otherwise reported converged.)
+      const bool moving = report.history.empty() ||
+                          (report.history.back().linear_residual <= 0.5 &&
+                           report.history.back().cfl >= settings_.cfl_start && s.last_omega >= 0.5);
+      s.stationary_count = small && moving ? s.stationary_count + 1 : 0;
+      stationary = s.stationary_count >= settings_.stationary_iterations && s.it > s.ramp;
+    }
+    s.wall_p_previous = std::move(wall_p);
+    s.wall_force_previous = force;
+  }
+  return stationary;
+}
+
+// The convergence test on the state this iteration started from: stationarity or the residual
+// drop (after the inflow ramp, and at the CFL ceiling where asked). True when converged; the
+// record is then the run's last.
+bool FlowSolver::check_convergence(SolveLoop& s) {
+  SolveReport& report = s.report;
+  const bool stationary = wall_stationary(s);
+  const bool past_transient = !settings_.residual_drop_at_cfl_ceiling || s.cfl >= s.cfl_ceiling;
+  if (stationary ||
+      (s.r_max > 0.0 && report.residual_drop <= settings_.residual_drop && s.it > s.ramp &&
+       (s.it > 1 || settings_.residual_reference > 0.0) && past_transient)) {
+    report.converged_by_stationarity = stationary && report.residual_drop > settings_.residual_drop;
+    report.converged = true;
+    s.rec.wall_time =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - s.start).count();
+    report.history.push_back(s.rec);
+    report.iterations = s.it - 1;
+    return true;
+  }
+  return false;
+}
+
+// The implicit step's linear system: V/dt from the CFL number, the first-order Jacobian (with
+// the nu_tilde rows and cross blocks for a coupled step), the right-hand side -R with the strong
+// conditions of fixed nodes and walls, and its ILU factors; then the solve, by Newton-Krylov or
+// defect correction (newton_krylov_step()), into s.du.
+void FlowSolver::linear_step(SolveLoop& s) {
+  const int n = s.n, nb = s.nb;
+  for (int i = 0; i < n; ++i)
+    s.diag_scale[i] = spectral_radius_[i] / s.cfl;  // V / dt
+  assemble_jacobian(s.diag_scale);
+  if (s.coupled) {
+    s.rec.turbulence_residual = turbulence_residual_norm();
+    turbulence_residual(true, &s.diag_scale);
+    assemble_coupled_jacobian();
+  }
+  for (int i = 0; i < n; ++i) {
+    double* rhs_i = s.rhs.data() + nb * static_cast<std::size_t>(i);
+    for (int v = 0; v < 4; ++v)
+      rhs_i[v] = fixed_node_[i] ? fixed_u_[i][v] - u_[i][v] : -res_[i][v];
+    if (s.coupled)
+      rhs_i[4] = -sa_row_scale_ * sa_res_[i];
+    const int b = wall_node_bc_[i];
+    if (b >= 0) {
+      // strong conditions: drive momentum (and rho E - rho cv Tw) to zero
+      rhs_i[1] = -u_[i][1];
+      rhs_i[2] = -u_[i][2];
+      if (bcs_[b].kind == BcKind::wall_isothermal) {
+        rhs_i[3] = -(u_[i][3] - u_[i][0] * gas_.cv() * wall_temperature_at(b, i));
+      }
+    }
+  }
+  ilu_.factorize(system_matrix(), settings_.ilu_partitions, settings_.ilu_fill_level);
+  if (newton_krylov_step(s)) {
+    s.lin = newton_krylov_solve(s);
+  } else {
+    s.lin = gmres(system_matrix(), ilu_, s.rhs, s.du, settings_.linear_tolerance,
+                  settings_.gmres_restart, settings_.gmres_max_iterations, gmres_workspace_);
+  }
+  s.rec.linear_iterations = s.lin.iterations;
+  s.rec.linear_residual = s.lin.relative_residual;
+  s.last_linear_failed = !(s.lin.relative_residual <= kLinearSolveFailed);
+  s.report.linear_iterations += s.lin.iterations;
+}
+
+// The Newton-Krylov step: the start of a Newton phase (its state kept for a fallback), the
+// Eisenstat-Walker tolerance, GMRES on the matrix-free operator, and the state's own residual
+// back in place of the last perturbed one.
+GmresResult FlowSolver::newton_krylov_solve(SolveLoop& s) {
+  const int it = s.it;
+  if (s.newton_from == 0 && settings_.matrix_free == MatrixFree::after_limiter_freeze) {
+    s.newton_from = s.report.newton_from = it;
+    s.newton_start_u = u_;
+    s.newton_start_nu = nu_tilde_;
+    s.newton_start_residual = s.r_previous;
+    s.newton_start_cfl = s.cfl;
+    if (settings_.print_every > 0)
+      std::fprintf(stderr, "iter %5d  limiter frozen: Newton-Krylov steps from here (drop %.2e)\n",
+                   it, s.report.residual_drop);
+  }
+  double forcing = settings_.matrix_free_linear_tolerance;
+  if (settings_.eisenstat_walker && s.newton_residual_previous > 0.0) {
+    // Eisenstat and Walker 1996 (SIAM J. Sci. Comput. 17:16), choice 2 with gamma 0.9,
+    // alpha 2 and its safeguard: solve tighter as the residual falls faster, so the
+    // inexact Newton steps converge superlinearly instead of at the fixed tolerance's rate
+    const double ratio = s.r_previous / s.newton_residual_previous;
+    forcing = 0.9 * ratio * ratio;
+    const double safeguard = 0.9 * s.forcing_previous * s.forcing_previous;
+    if (safeguard > 0.1)
+      forcing = std::max(forcing, safeguard);
+    forcing =
+        std::clamp(forcing, settings_.eisenstat_walker_min, settings_.matrix_free_linear_tolerance);
+  }
+  s.newton_residual_previous = s.r_previous;
+  s.forcing_previous = forcing;
+  // no restart: restarted GMRES(20) stagnated outright (relative residual 1.0 after 80
+  // iterations) on nasa-2dcd at CFL 1e4 where the full basis converged in 137-183
+  const GmresResult lin = gmres(matrix_free_operator(s.diag_scale), ilu_, s.rhs, s.du, forcing,
+                                std::max(settings_.gmres_restart, settings_.gmres_max_iterations),
+                                settings_.gmres_max_iterations, gmres_workspace_);
+  compute_residual(false);  // back to the state's own residual, gradients and viscosities
+  return lin;
+}
+
+// The fraction omega of node i's update du_i that is taken, and the relaxed conservative state
+// un it gives: the relative change of density and pressure (and, coupled, of nu_tilde) limited,
+// then omega halved until the state is physical (0: the node keeps its state).
+double FlowSolver::node_relaxation(int i, const double* du_i, bool coupled, State& un) const {
+  un = u_[i];
+  for (int v = 0; v < 4; ++v)
+    un[v] += du_i[v];
+  const State wn = gas_.primitive(un);
+  const State& wo = w_[i];
+  const double change = std::max(std::abs(wn[0] - wo[0]) / wo[0], std::abs(wn[3] - wo[3]) / wo[3]);
+  double omega_i = 1.0;
+  if (!std::isfinite(change))
+    omega_i = 0.0;
+  else if (change > settings_.max_relative_update)
+    omega_i = settings_.max_relative_update / change;
+  if (coupled && wall_node_bc_[i] < 0) {
+    // nu_tilde may grow by a factor 1 + max_turbulence_update per step and fall by the
+    // same fraction of its scale |nu_tilde| + nu: the Newton step of the source terms
+    // overshoots where production outruns destruction (a physicality-based step limit)
+    const double scale = std::abs(nu_tilde_[i]) + sa_nu_[i];
+    const double change_nu = std::abs(du_i[4]) / scale;
+    if (!std::isfinite(change_nu))
+      omega_i = 0.0;
+    else if (change_nu * omega_i > settings_.max_turbulence_update)
+      omega_i = settings_.max_turbulence_update / change_nu;
+  }
+  // The primitive change is not linear in omega (kinetic energy): halve omega until the
+  // relaxed state is physical and within the allowed change, rather than freezing the node
+  // (a frozen node near a near-vacuum lip corner never recovers, its residual grows and the
+  // SER ramp then collapses the CFL everywhere).
+  for (int halving = 0;; ++halving) {
+    for (int v = 0; v < 4; ++v)
+      un[v] = u_[i][v] + omega_i * du_i[v];
+    const double p_new =
+        (gas_.gamma - 1.0) * (un[3] - 0.5 * (un[1] * un[1] + un[2] * un[2]) / un[0]);
+    const bool ok = un[0] > 0.0 && p_new > kPressureFloor * un[3] &&
+                    std::abs(p_new - wo[3]) <= 2.0 * settings_.max_relative_update * wo[3];
+    if (ok)
+      break;
+    if (halving == 12 || omega_i == 0.0) {
+      omega_i = 0.0;
+      un = u_[i];
+      break;
+    }
+    omega_i *= 0.5;
+  }
+  return omega_i;
+}
+
+// The update u += omega du, relaxed node by node so that a near-vacuum corner does not hold
+// back the rest of the domain; then the strong conditions, and the least relaxation for the
+// report.
+void FlowSolver::relax_update(SolveLoop& s) {
+  const int n = s.n, nb = s.nb;
+  const bool coupled = s.coupled;
+  // Relaxation, node by node: limit the relative change of density and pressure, and leave
+  // a node unchanged if even the limited update is not physical. Local relaxation acts like
+  // a local time step: a near-vacuum corner does not hold back the rest of the domain.
+  double omega_min = 1.0;
+  int omega_node = -1;
+  int limited = 0;
+  s.u_good = u_;
+  if (coupled)
+    s.nu_good = nu_tilde_;
+  for (int i = 0; i < n; ++i) {
+    const double* du_i = s.du.data() + nb * static_cast<std::size_t>(i);
+    State un;
+    const double omega_i = node_relaxation(i, du_i, coupled, un);
+    u_[i] = un;
+    if (coupled) {
+      // the same fraction of the Newton step for nu_tilde; strong 0 on no-slip walls
+      if (wall_node_bc_[i] >= 0)
+        nu_tilde_[i] = 0.0;
+      else if (std::isfinite(du_i[4]))
+        nu_tilde_[i] += omega_i * du_i[4];
+    }
+    if (omega_i < 1.0)
+      ++limited;
+    if (omega_i < omega_min) {
+      omega_min = omega_i;
+      omega_node = i;
+    }
+  }
+  apply_strong_conditions(u_);
+  s.report.least_relaxation = omega_min;
+  if (omega_node >= 0)
+    s.report.least_relaxed_at = dual_.coords[omega_node];
+  s.omega_min = omega_min;
+  s.omega_node = omega_node;
+  s.limited = limited;
+}
+
+// What the step tells the CFL control: a non-physical result goes back to the state before it
+// with a tenth of the CFL number; a linearisation far off in a sizeable region, or a failed
+// linear solve, halves it. The relaxation seen by the next CFL update is set here too.
+void FlowSolver::accept_or_reject_step(SolveLoop& s) {
+  const double limited_fraction = static_cast<double>(s.limited) / s.n;
+  s.rec.relaxation = s.omega_min;
+  // CFL control sees a limited update only if it concerns more than a few nodes
+  s.last_omega = limited_fraction <= settings_.relaxed_fraction_tolerated ? 1.0 : s.omega_min;
+  if (!physical(u_)) {
+    u_ = s.u_good;
+    if (s.coupled)
+      nu_tilde_ = s.nu_good;
+    s.cfl_scale *= 0.1;
+    s.cfl *= 0.1;
+    ++s.report.backoffs;
+  } else if ((limited_fraction > settings_.relaxed_fraction_tolerated && s.omega_min < 0.5) ||
+             s.last_linear_failed) {
+    // the linearisation was far off in a sizeable region, or the linear solve could not
+    // solve it: slow the ramp down. (A failed solve moves the state little, so neither the
+    // relaxation nor the residual sees it; NPARC 0.75 on 480 x 120 took 22 such steps at CFL
+    // 1e4 with GMRES at a relative residual of 1.0, then blew up and took 60 to recover.)
+    s.cfl_scale *= 0.5;
+    s.cfl *= 0.5;
+  }
+}
+
+// The node with the largest density residual per volume: the first thing to look at when a
+// run stalls (progress line, report of a run that did not converge).
+int FlowSolver::worst_residual_node() const {
+  int worst = 0;
+  for (int i = 1; i < dual_.num_nodes; ++i) {
+    if (std::abs(res_[i][0]) / dual_.volume[i] > std::abs(res_[worst][0]) / dual_.volume[worst])
+      worst = i;
+  }
+  return worst;
+}
+
+// The iteration's record into the history, and the progress line every print_every iterations.
+void FlowSolver::report_progress(SolveLoop& s) {
+  const int it = s.it;
+  const double omega = s.omega_min;
+  s.rec.wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - s.start).count();
+  s.report.history.push_back(s.rec);
+  s.report.iterations = it;
+  if (settings_.print_every > 0 && (it % settings_.print_every == 0 || it == 1)) {
+    std::fprintf(stderr, "iter %5d  res(rho) %.3e  drop %.2e  cfl %.2e  omega %.2f  lin %3d (%.1e)",
+                 it, s.rnorm[0], s.report.residual_drop, s.cfl, omega, s.lin.iterations,
+                 s.lin.relative_residual);
+    if (settings_.turbulent)
+      std::fprintf(stderr, "  res(nu_t) %.2e", s.rec.turbulence_residual);
+    // where the density residual is largest: the first thing to look at when it stalls
+    const int worst = worst_residual_node();
+    std::fprintf(stderr, "  max at (%.4g, %.4g)", dual_.coords[worst].x, dual_.coords[worst].y);
+    if (s.omega_node >= 0) {
+      std::fprintf(stderr, "  omega min at (%.4g, %.4g)", dual_.coords[s.omega_node].x,
+                   dual_.coords[s.omega_node].y);
+    }
+    std::fprintf(stderr, "\n");
+  }
+}
+
+// Give up after more than 20 returns to the last good state, or when the CFL has collapsed:
+// the pseudo-time march no longer moves.
+bool FlowSolver::march_stopped(SolveLoop& s) {
+  if (s.report.backoffs > 20)
+    return true;
+  s.collapsed = s.cfl < 1e-3 * settings_.cfl_start ? s.collapsed + 1 : 0;
+  return s.collapsed > 10;
+}
+
+// The report's closing part: for a run that did not converge, the last physical state back in
+// place with its residual, why it stopped and where; for every run, the times and counts.
+void FlowSolver::finish_run(SolveLoop& s) {
+  SolveReport& report = s.report;
   if (!report.converged) {
     compute_residual(!limiter_frozen_);
     if (!physical(u_)) {
-      u_ = u_good;
-      if (coupled)
-        nu_tilde_ = nu_good;
+      u_ = s.u_good;
+      if (s.coupled)
+        nu_tilde_ = s.nu_good;
       compute_residual(!limiter_frozen_);
     }
     report.stop_reason =
         report.backoffs > 20 ? "more than 20 returns to the last good state (non-physical updates)"
-        : collapsed > 10
+        : s.collapsed > 10
             ? "the CFL number collapsed below 1e-3 of its start value"
             : "iteration limit (" + std::to_string(settings_.max_iterations) + ") reached";
-    int worst = 0;
-    for (int i = 1; i < n; ++i) {
-      if (std::abs(res_[i][0]) / dual_.volume[i] > std::abs(res_[worst][0]) / dual_.volume[worst])
-        worst = i;
-    }
-    report.worst_residual_at = dual_.coords[worst];
+    report.worst_residual_at = dual_.coords[worst_residual_node()];
   }
-  report.wall_time = std::chrono::duration<double>(clock::now() - start).count();
-  report.final_cfl = cfl;
-  report.residual_evaluations = residual_evaluations_ - evaluations_before;
-  report.residual_seconds = residual_seconds_ - residual_seconds_before;
-  return report;
+  report.wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - s.start).count();
+  report.final_cfl = s.cfl;
+  report.residual_evaluations = residual_evaluations_ - s.evaluations_before;
+  report.residual_seconds = residual_seconds_ - s.residual_seconds_before;
 }
 
 BoundaryIntegral FlowSolver::boundary_integral(int curve) {

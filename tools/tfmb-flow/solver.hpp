@@ -332,6 +332,33 @@ class FlowSolver {
   // y = (V/dt + dR/du) x of the current residual, see SolverSettings::matrix_free
   LinearOperator matrix_free_operator(const std::vector<double>& diag_scale);
 
+  // solve()'s pseudo-time loop in phases, in the order they run (solver.cpp); SolveLoop holds
+  // the loop's running variables
+  struct SolveLoop;
+  void start_run(SolveLoop& s);
+  bool newton_krylov_step(const SolveLoop& s) const;  // this step's kind
+  void switch_turbulence_coupling(SolveLoop& s);
+  void ramp_inflow(const SolveLoop& s);
+  void back_off_non_finite(SolveLoop& s);
+  void release_held_limiter_if_far(const SolveLoop& s);
+  bool track_residual(SolveLoop& s);  // true: went back to the best state
+  void cut_cfl_ceiling_on_stall(SolveLoop& s);
+  void freeze_limiter(const SolveLoop& s);
+  bool abandon_failed_newton_phase(SolveLoop& s);  // true: went back to the phase's start
+  void update_cfl(SolveLoop& s);
+  void begin_record(SolveLoop& s);
+  bool wall_stationary(SolveLoop& s);
+  bool check_convergence(SolveLoop& s);  // true: converged
+  void linear_step(SolveLoop& s);
+  GmresResult newton_krylov_solve(SolveLoop& s);
+  void relax_update(SolveLoop& s);
+  double node_relaxation(int i, const double* du_i, bool coupled, State& un) const;
+  void accept_or_reject_step(SolveLoop& s);
+  void report_progress(SolveLoop& s);
+  bool march_stopped(SolveLoop& s);  // true: the run gives up
+  void finish_run(SolveLoop& s);
+  int worst_residual_node() const;  // largest density residual per volume
+
   Mesh mesh_;  // internal numbering
   std::vector<int> new_of_old_, old_of_new_;
   std::vector<Vec2> coords_external_;
