@@ -528,7 +528,16 @@ Writer::Writer(const std::filesystem::path& file) : path_(file) {
   Handle fcpl(H5Pcreate(H5P_FILE_CREATE));
   // Byte-reproducible output: the root group carries no modification times either.
   H5Pset_obj_track_times(fcpl.get(), 0);
-  file_id_ = H5Fcreate(tmp_path_.c_str(), H5F_ACC_TRUNC, fcpl.get(), H5P_DEFAULT);
+  // The HDF5 1.10 file format checksums its metadata (superblock, object headers, B-trees,
+  // heaps of link names), so a damaged file fails to open or read with a checksum error that
+  // the Reader reports, where the 1.8-compatible default format let the library follow a
+  // flipped address or size and crash (issue 23). The upper bound is pinned too, so that a newer
+  // HDF5 still writes files that 1.10 readers (Debian's h5py) open.
+  Handle fapl(H5Pcreate(H5P_FILE_ACCESS));
+  if (H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V110, H5F_LIBVER_V110) < 0) {
+    throw InternalError(tmp_path_.string() + ": cannot select the HDF5 1.10 file format");
+  }
+  file_id_ = H5Fcreate(tmp_path_.c_str(), H5F_ACC_TRUNC, fcpl.get(), fapl.get());
   if (file_id_ < 0) {
     throw InternalError(tmp_path_.string() + ": cannot create file (directory writable?)");
   }
