@@ -26,6 +26,21 @@ void silence_hdf5_errors() {
   (void)silenced;
 }
 
+// The innermost entry of HDF5's error stack after a failed call ("incorrect metadata checksum
+// after all read attempts", "truncated file: eof = ..."), to say why a damaged file was refused.
+// Must be called before any other HDF5 call, which would clear the stack.
+std::string hdf5_cause() {
+  std::string cause;
+  H5Ewalk2(
+      H5E_DEFAULT, H5E_WALK_UPWARD,
+      [](unsigned n, const H5E_error2_t* error, void* data) -> herr_t {
+        if (n == 0 && error->desc) *static_cast<std::string*>(data) = error->desc;
+        return 0;
+      },
+      &cause);
+  return cause;
+}
+
 // Closes an HDF5 identifier of any kind when it goes out of scope.
 class Handle {
  public:
@@ -101,6 +116,34 @@ hid_t string_type() {
   return type;
 }
 
+// Names of a group's links, unsorted, from one walk of its link index in the order it is stored:
+// asking for them by position (H5Lget_name_by_idx) or in name order makes HDF5 build a table of
+// a large group's links, and HDF5 1.10 frees that table's unfilled entries when a damaged heap
+// stops the build (a crash in H5G__link_release_table). False if the walk failed (the HDF5 error
+// stack says why).
+bool link_names(hid_t group, std::vector<std::string>& names) {
+  hsize_t index = 0;
+  return H5Literate(
+             group, H5_INDEX_NAME, H5_ITER_NATIVE, &index,
+             [](hid_t, const char* name, const H5L_info_t*, void* data) -> herr_t {
+               static_cast<std::vector<std::string>*>(data)->emplace_back(name);
+               return 0;
+             },
+             &names) >= 0;
+}
+
+// The same for an object's attributes (more than 8 are kept in a heap, as links are).
+bool attribute_names(hid_t object, std::vector<std::string>& names) {
+  hsize_t index = 0;
+  return H5Aiterate2(
+             object, H5_INDEX_NAME, H5_ITER_NATIVE, &index,
+             [](hid_t, const char* name, const H5A_info_t*, void* data) -> herr_t {
+               static_cast<std::vector<std::string>*>(data)->emplace_back(name);
+               return 0;
+             },
+             &names) >= 0;
+}
+
 }  // namespace
 
 bool is_hdf5_file(const std::filesystem::path& file) {
@@ -127,7 +170,10 @@ Reader::Reader(const std::filesystem::path& file) : path_(file) {
   }
   file_id_ = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   if (file_id_ < 0) {
-    throw BadInput(file.string() + ": cannot open as HDF5 (truncated or corrupted file?)");
+    const std::string cause = hdf5_cause();
+    throw DamagedFile(file.string() + ": cannot open as HDF5 (" +
+                   (cause.empty() ? std::string("truncated or corrupted file?") : cause) +
+                   "): damaged file");
   }
 }
 
@@ -143,52 +189,58 @@ void Reader::fail(const std::string& object_path, const std::string& what) const
   throw BadInput(path_.string() + ": " + object_path + ": " + what);
 }
 
+void Reader::fail_hdf5(const std::string& object_path, const std::string& what) const {
+  const std::string cause = hdf5_cause();
+  throw DamagedFile(path_.string() + ": " + object_path + ": " + what +
+                    (cause.empty() ? std::string() : " (" + cause + ")") + ": damaged file");
+}
+
+std::int64_t Reader::object_type(const std::string& object_path) const {
+  H5O_info_t info;
+  if (H5Oget_info_by_name(file_id_, object_path.c_str(), &info, H5P_DEFAULT) < 0) {
+    fail_hdf5(object_path, "cannot read the object header");
+  }
+  return info.type;
+}
+
 bool Reader::exists(const std::string& object_path) const {
   if (object_path == "/") return true;
-  // H5Lexists fails on a missing intermediate group, so walk the path one link at a time.
+  // H5Lexists fails on a missing intermediate group, so walk the path one link at a time. A
+  // failure (rather than "no") is a damaged file, reported as such: taken for absence it became
+  // a list of "missing" objects that hid the cause.
   std::string partial;
   std::size_t start = 1;
   while (start <= object_path.size()) {
     std::size_t end = object_path.find('/', start);
     if (end == std::string::npos) end = object_path.size();
     partial = object_path.substr(0, end);
-    if (H5Lexists(file_id_, partial.c_str(), H5P_DEFAULT) <= 0) return false;
-    if (H5Oexists_by_name(file_id_, partial.c_str(), H5P_DEFAULT) <= 0) return false;
+    const htri_t link = H5Lexists(file_id_, partial.c_str(), H5P_DEFAULT);
+    if (link < 0) fail_hdf5(partial, "cannot read the group's links");
+    if (link == 0) return false;
+    const htri_t object = H5Oexists_by_name(file_id_, partial.c_str(), H5P_DEFAULT);
+    if (object < 0) fail_hdf5(partial, "cannot resolve the link");
+    if (object == 0) return false;
+    // Below a dataset nothing exists (and H5Lexists would fail on the path).
+    if (end < object_path.size() && object_type(partial) != H5O_TYPE_GROUP) return false;
     start = end + 1;
   }
   return true;
 }
 
 bool Reader::is_group(const std::string& object_path) const {
-  if (!exists(object_path)) return false;
-  H5O_info_t info;
-  if (H5Oget_info_by_name(file_id_, object_path.c_str(), &info, H5P_DEFAULT) < 0) return false;
-  return info.type == H5O_TYPE_GROUP;
+  return exists(object_path) && object_type(object_path) == H5O_TYPE_GROUP;
 }
 
 bool Reader::is_dataset(const std::string& object_path) const {
-  if (!exists(object_path)) return false;
-  H5O_info_t info;
-  if (H5Oget_info_by_name(file_id_, object_path.c_str(), &info, H5P_DEFAULT) < 0) return false;
-  return info.type == H5O_TYPE_DATASET;
+  return exists(object_path) && object_type(object_path) == H5O_TYPE_DATASET;
 }
 
 std::vector<std::string> Reader::children(const std::string& group_path) const {
   if (!is_group(group_path)) fail(group_path, "missing group");
   Handle group(H5Gopen2(file_id_, group_path.c_str(), H5P_DEFAULT));
-  if (!group.valid()) fail(group_path, "cannot open group");
-  H5G_info_t info;
-  if (H5Gget_info(group.get(), &info) < 0) fail(group_path, "cannot list group");
+  if (!group.valid()) fail_hdf5(group_path, "cannot open group");
   std::vector<std::string> names;
-  for (hsize_t i = 0; i < info.nlinks; ++i) {
-    const ssize_t length = H5Lget_name_by_idx(group.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i,
-                                              nullptr, 0, H5P_DEFAULT);
-    if (length < 0) fail(group_path, "cannot read a link name");
-    std::string name(static_cast<std::size_t>(length), '\0');
-    H5Lget_name_by_idx(group.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(),
-                       name.size() + 1, H5P_DEFAULT);
-    names.push_back(name);
-  }
+  if (!link_names(group.get(), names)) fail_hdf5(group_path, "cannot list group");
   std::sort(names.begin(), names.end());
   return names;
 }
@@ -197,15 +249,15 @@ DatasetInfo Reader::info(const std::string& dataset_path) const {
   if (!exists(dataset_path)) fail(dataset_path, "missing dataset");
   if (!is_dataset(dataset_path)) fail(dataset_path, "is a group, expected a dataset");
   Handle dataset(H5Dopen2(file_id_, dataset_path.c_str(), H5P_DEFAULT));
-  if (!dataset.valid()) fail(dataset_path, "cannot open dataset");
+  if (!dataset.valid()) fail_hdf5(dataset_path, "cannot open dataset");
   Handle type(H5Dget_type(dataset.get()));
   Handle space(H5Dget_space(dataset.get()));
-  if (!type.valid() || !space.valid()) fail(dataset_path, "cannot read type or shape");
+  if (!type.valid() || !space.valid()) fail_hdf5(dataset_path, "cannot read type or shape");
   DatasetInfo result;
   result.dtype = dtype_of(type.get());
   result.dtype_name = dtype_name_of(type.get());
   const int rank = H5Sget_simple_extent_ndims(space.get());
-  if (rank < 0) fail(dataset_path, "cannot read shape");
+  if (rank < 0) fail_hdf5(dataset_path, "cannot read shape");
   std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
   H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
   result.shape.assign(dims.begin(), dims.end());
@@ -222,6 +274,7 @@ std::vector<T> read_numeric(const Reader& reader, hid_t file_id, const std::stri
                           (expected == DType::float64 ? "float64" : "int64"));
   }
   Handle dataset(H5Dopen2(file_id, path.c_str(), H5P_DEFAULT));
+  if (!dataset.valid()) reader.fail_hdf5(path, "cannot open dataset");
   // A dataset without filters stores every value it declares; one that declares more than the
   // file holds is corrupted (a flipped byte in its shape: 2^40 rows made every reader try to
   // allocate 16 TB and die out of memory) and is refused before anything is allocated.
@@ -241,7 +294,7 @@ std::vector<T> read_numeric(const Reader& reader, hid_t file_id, const std::stri
   std::vector<T> values(element_count(info.shape));
   if (!values.empty() &&
       H5Dread(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0) {
-    reader.fail(path, "cannot read data (truncated or corrupted file?)");
+    reader.fail_hdf5(path, "cannot read data");
   }
   if (shape) *shape = info.shape;
   return values;
@@ -352,6 +405,7 @@ std::vector<std::string> Reader::read_strings(const std::string& dataset_path) c
   }
   if (info.shape.size() > 1) fail(dataset_path, "wrong shape " + shape_text(info.shape) + ", expected (n,)");
   Handle dataset(H5Dopen2(file_id_, dataset_path.c_str(), H5P_DEFAULT));
+  if (!dataset.valid()) fail_hdf5(dataset_path, "cannot open dataset");
   Handle file_type(H5Dget_type(dataset.get()));
   if (H5Tis_variable_str(file_type.get()) <= 0) fail(dataset_path, "expected variable-length strings");
   Handle memory_type(string_type());
@@ -359,7 +413,7 @@ std::vector<std::string> Reader::read_strings(const std::string& dataset_path) c
   std::vector<char*> raw(n, nullptr);
   if (n > 0 && H5Dread(dataset.get(), memory_type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT,
                        raw.data()) < 0) {
-    fail(dataset_path, "cannot read strings");
+    fail_hdf5(dataset_path, "cannot read strings");
   }
   std::vector<std::string> result;
   for (char* s : raw) result.emplace_back(s ? s : "");
@@ -372,25 +426,17 @@ std::vector<std::string> Reader::read_strings(const std::string& dataset_path) c
 
 bool Reader::has_attr(const std::string& object_path, const std::string& name) const {
   if (!exists(object_path)) return false;
-  return H5Aexists_by_name(file_id_, object_path.c_str(), name.c_str(), H5P_DEFAULT) > 0;
+  const htri_t found = H5Aexists_by_name(file_id_, object_path.c_str(), name.c_str(), H5P_DEFAULT);
+  if (found < 0) fail_hdf5(object_path, "cannot read the attributes");
+  return found > 0;
 }
 
 std::vector<std::string> Reader::attr_names(const std::string& object_path) const {
   if (!exists(object_path)) fail(object_path, "missing object");
-  H5O_info_t info;
-  if (H5Oget_info_by_name(file_id_, object_path.c_str(), &info, H5P_DEFAULT) < 0) {
-    fail(object_path, "cannot read object info");
-  }
+  Handle object(H5Oopen(file_id_, object_path.c_str(), H5P_DEFAULT));
+  if (!object.valid()) fail_hdf5(object_path, "cannot open object");
   std::vector<std::string> names;
-  for (hsize_t i = 0; i < info.num_attrs; ++i) {
-    const ssize_t length = H5Aget_name_by_idx(file_id_, object_path.c_str(), H5_INDEX_NAME,
-                                              H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT);
-    if (length < 0) fail(object_path, "cannot read an attribute name");
-    std::string name(static_cast<std::size_t>(length), '\0');
-    H5Aget_name_by_idx(file_id_, object_path.c_str(), H5_INDEX_NAME, H5_ITER_INC, i, name.data(),
-                       name.size() + 1, H5P_DEFAULT);
-    names.push_back(name);
-  }
+  if (!attribute_names(object.get(), names)) fail_hdf5(object_path, "cannot list the attributes");
   std::sort(names.begin(), names.end());
   return names;
 }
@@ -400,7 +446,7 @@ Handle open_attr(const Reader& reader, hid_t file_id, const std::string& object_
                  const std::string& name) {
   if (!reader.has_attr(object_path, name)) reader.fail(object_path, "missing attribute '" + name + "'");
   Handle attr(H5Aopen_by_name(file_id, object_path.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT));
-  if (!attr.valid()) reader.fail(object_path, "cannot open attribute '" + name + "'");
+  if (!attr.valid()) reader.fail_hdf5(object_path, "cannot open attribute '" + name + "'");
   return attr;
 }
 
@@ -439,7 +485,7 @@ std::string Reader::attr_string(const std::string& object_path, const std::strin
     Handle memory_type(string_type());
     char* raw = nullptr;
     if (H5Aread(attr.get(), memory_type.get(), &raw) < 0) {
-      fail(object_path, "cannot read attribute '" + name + "'");
+      fail_hdf5(object_path, "cannot read attribute '" + name + "'");
     }
     std::string value = raw ? raw : "";
     Handle space(H5Aget_space(attr.get()));
@@ -452,7 +498,7 @@ std::string Reader::attr_string(const std::string& object_path, const std::strin
   Handle memory_type(H5Tcopy(H5T_C_S1));
   H5Tset_size(memory_type.get(), size);
   if (H5Aread(attr.get(), memory_type.get(), value.data()) < 0) {
-    fail(object_path, "cannot read attribute '" + name + "'");
+    fail_hdf5(object_path, "cannot read attribute '" + name + "'");
   }
   value.resize(std::min(value.size(), value.find('\0')));
   return value;
@@ -469,7 +515,7 @@ double Reader::attr_f64(const std::string& object_path, const std::string& name)
   if (attr_count(attr.get()) != 1) fail(object_path, "attribute '" + name + "' is not a scalar");
   double value = 0;
   if (H5Aread(attr.get(), H5T_NATIVE_DOUBLE, &value) < 0) {
-    fail(object_path, "cannot read attribute '" + name + "'");
+    fail_hdf5(object_path, "cannot read attribute '" + name + "'");
   }
   if (!std::isfinite(value)) {
     std::ostringstream what;
@@ -489,7 +535,7 @@ std::int64_t Reader::attr_i64(const std::string& object_path, const std::string&
   if (attr_count(attr.get()) != 1) fail(object_path, "attribute '" + name + "' is not a scalar");
   std::int64_t value = 0;
   if (H5Aread(attr.get(), H5T_NATIVE_INT64, &value) < 0) {
-    fail(object_path, "cannot read attribute '" + name + "'");
+    fail_hdf5(object_path, "cannot read attribute '" + name + "'");
   }
   return value;
 }
@@ -505,7 +551,7 @@ std::vector<double> Reader::attr_f64_vector(const std::string& object_path,
   }
   std::vector<double> values(attr_count(attr.get()));
   if (H5Aread(attr.get(), H5T_NATIVE_DOUBLE, values.data()) < 0) {
-    fail(object_path, "cannot read attribute '" + name + "'");
+    fail_hdf5(object_path, "cannot read attribute '" + name + "'");
   }
   for (double v : values) {
     if (!std::isfinite(v)) fail(object_path, "attribute '" + name + "' has a non-finite value");

@@ -5,8 +5,10 @@
 // whose message is one line: "<file>: <path inside it>: <what is wrong>".
 //
 // Reading checks dtype (float64 / int64 exactly, any byte order), rank and shape, finiteness of
-// every float and, on request, index ranges. Writing is atomic (<file>.tmp, close, rename) and
-// byte-reproducible (object modification times are not stored).
+// every float and, on request, index ranges; an HDF5 call that fails on the file (a checksum
+// mismatch, a truncated file) is reported as a damaged file, never taken for a missing object.
+// Writing is atomic (<file>.tmp, close, rename), byte-reproducible (object modification times are
+// not stored) and in the HDF5 1.10 file format, whose metadata is checksummed.
 #pragma once
 
 #include <Eigen/Core>
@@ -15,6 +17,8 @@
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "tfmb/common/errors.hpp"
 
 namespace tfmb::h5 {
 
@@ -30,13 +34,22 @@ struct DatasetInfo {
   std::vector<std::size_t> shape;   // empty for a scalar
 };
 
+// A file HDF5 cannot read as it stands (a checksum mismatch, an address past its end, a heap
+// that crashes the library): everything read after the first damage would be its consequence,
+// so a validation stops there and reports this one line.
+class DamagedFile : public BadInput {
+ public:
+  using BadInput::BadInput;
+};
+
 // Shape expectation for one dimension: std::nullopt accepts any extent.
 using Extent = std::optional<std::size_t>;
 
 // Read-only access to one HDF5 file.
 class Reader {
  public:
-  // Throws BadInput if the file does not exist or is not an HDF5 file.
+  // Throws BadInput if the file does not exist or is not an HDF5 file, DamagedFile if HDF5
+  // cannot open it.
   explicit Reader(const std::filesystem::path& file);
   ~Reader();
   Reader(const Reader&) = delete;
@@ -84,8 +97,15 @@ class Reader {
 
   // Throws BadInput("<file>: <object_path>: <what>").
   [[noreturn]] void fail(const std::string& object_path, const std::string& what) const;
+  // Throws DamagedFile after an HDF5 call on the file failed, with HDF5's innermost reason (a
+  // checksum mismatch, an address past the end of the file). Call it right after the failing
+  // call: any other HDF5 call clears the reason.
+  [[noreturn]] void fail_hdf5(const std::string& object_path, const std::string& what) const;
 
  private:
+  // H5O_TYPE_GROUP, H5O_TYPE_DATASET, ... of an existing object; a damaged header throws.
+  std::int64_t object_type(const std::string& object_path) const;
+
   std::filesystem::path path_;
   std::int64_t file_id_ = -1;
 };
