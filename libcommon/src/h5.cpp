@@ -1,13 +1,24 @@
 #include "tfmb/common/h5.hpp"
 
+#include <fcntl.h>
 #include <hdf5.h>
+#include <poll.h>
+#include <sys/mman.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <functional>
+#include <new>
 #include <numeric>
+#include <set>
 #include <sstream>
 
 #include "tfmb/common/errors.hpp"
@@ -144,6 +155,203 @@ bool attribute_names(hid_t object, std::vector<std::string>& names) {
              &names) >= 0;
 }
 
+// ---------------------------------------------------------------------------------------------
+// Reading a file once in a child process before trusting it
+//
+// The 1.10 file format checksums the metadata, but not the global heap that holds variable-length
+// strings (every string attribute and dataset of a tfmb file), nor the heap references stored in
+// a string dataset's values, nor anything in files of the older format (external writers, h5py
+// defaults). HDF5 1.10 follows a damaged heap object's size or address without checking it: it
+// crashes (SIGSEGV in H5HG_read) or loops forever (a zeroed object size in H5HG's cache
+// deserialize). No API reads those structures without trusting them, so a child process reads
+// every attribute and every dataset the library would have to decode for us first; if it dies or
+// hangs, the file is refused with one line naming the object it was reading.
+
+// Shared with the child: what it is reading, for the parent's message if it dies there.
+struct GuardProgress {
+  char object[512];
+  char what[256];
+};
+
+void note(GuardProgress* progress, const std::string& object, const std::string& what) {
+  std::snprintf(progress->object, sizeof progress->object, "%s", object.c_str());
+  std::snprintf(progress->what, sizeof progress->what, "%s", what.c_str());
+}
+
+// Above this a value is not read in the child (the parent refuses or reads it itself).
+constexpr std::size_t guard_read_limit = std::size_t{1} << 29;
+
+// Reads `count` elements of an attribute (dataset == false) or dataset of file type `type`, in
+// the type's native form (variable-length strings as C strings), and frees what HDF5 allocated.
+void read_values(hid_t object, bool dataset, hid_t type, hid_t space, hsize_t count) {
+  if (count == 0) return;
+  const bool vlen_string = H5Tget_class(type) == H5T_STRING && H5Tis_variable_str(type) > 0;
+  Handle memory_type(vlen_string ? string_type() : H5Tget_native_type(type, H5T_DIR_DEFAULT));
+  if (!memory_type.valid()) return;
+  const std::size_t size = H5Tget_size(memory_type.get());
+  if (size == 0 || count > guard_read_limit / size) return;
+  std::vector<unsigned char> buffer(static_cast<std::size_t>(count) * size);
+  const herr_t read = dataset ? H5Dread(object, memory_type.get(), H5S_ALL, H5S_ALL,
+                                        H5P_DEFAULT, buffer.data())
+                              : H5Aread(object, memory_type.get(), buffer.data());
+  if (read >= 0 && (vlen_string || H5Tdetect_class(memory_type.get(), H5T_VLEN) > 0)) {
+    H5Dvlen_reclaim(memory_type.get(), space, H5P_DEFAULT, buffer.data());
+  }
+}
+
+// Reads the object at `path` (its header, attributes and, for a dataset, values the library
+// decodes: strings, chunked or compact storage) and recurses into groups, each object once.
+// Failures are skipped: the parent reports them where it meets them, with the reason.
+void read_object(hid_t file, const std::string& path, std::set<haddr_t>& seen,
+                 GuardProgress* progress) {
+  note(progress, path, "reading the object header");
+  H5O_info_t info;
+  if (H5Oget_info_by_name(file, path.c_str(), &info, H5P_DEFAULT) < 0) return;
+  if (!seen.insert(info.addr).second) return;  // a hard link to an object already read
+  Handle object(H5Oopen(file, path.c_str(), H5P_DEFAULT));
+  if (!object.valid()) return;
+
+  note(progress, path, "reading the attributes");
+  std::vector<std::string> attributes;
+  if (!attribute_names(object.get(), attributes)) return;
+  for (const std::string& name : attributes) {
+    note(progress, path, "reading attribute '" + name + "'");
+    Handle attr(H5Aopen(object.get(), name.c_str(), H5P_DEFAULT));
+    if (!attr.valid()) continue;
+    Handle type(H5Aget_type(attr.get()));
+    Handle space(H5Aget_space(attr.get()));
+    if (!type.valid() || !space.valid()) continue;
+    const hssize_t count = H5Sget_simple_extent_npoints(space.get());
+    if (count > 0) {
+      read_values(attr.get(), false, type.get(), space.get(), static_cast<hsize_t>(count));
+    }
+  }
+
+  if (info.type == H5O_TYPE_DATASET) {
+    note(progress, path, "reading the dataset");
+    Handle type(H5Dget_type(object.get()));
+    Handle space(H5Dget_space(object.get()));
+    Handle plist(H5Dget_create_plist(object.get()));
+    if (!type.valid() || !space.valid() || !plist.valid()) return;
+    const hssize_t count = H5Sget_simple_extent_npoints(space.get());
+    if (count <= 0) return;
+    // Plain contiguous numbers are copied from the file as they are; what the library decodes
+    // (heap references of strings, chunk indexes, compact storage in the header) is read here.
+    const bool decoded = H5Tdetect_class(type.get(), H5T_STRING) > 0 ||
+                         H5Tdetect_class(type.get(), H5T_VLEN) > 0 ||
+                         H5Pget_layout(plist.get()) != H5D_CONTIGUOUS;
+    // A shape declaring more than the file stores is refused by the parent before reading.
+    const double declared =
+        static_cast<double>(count) * static_cast<double>(H5Tget_size(type.get()));
+    const bool plausible = H5Pget_nfilters(plist.get()) > 0 ||
+                           declared <= static_cast<double>(H5Dget_storage_size(object.get()));
+    if (decoded && plausible) {
+      read_values(object.get(), true, type.get(), space.get(), static_cast<hsize_t>(count));
+    }
+  } else if (info.type == H5O_TYPE_GROUP) {
+    note(progress, path, "reading the group's links");
+    std::vector<std::string> links;
+    if (!link_names(object.get(), links)) return;
+    for (const std::string& name : links) {
+      const std::string child = (path == "/" ? "/" : path + "/") + name;
+      H5L_info_t link;
+      if (H5Lget_info(file, child.c_str(), &link, H5P_DEFAULT) < 0 ||
+          link.type != H5L_TYPE_HARD) {
+        continue;  // soft and external links are not followed by the readers either
+      }
+      read_object(file, child, seen, progress);
+    }
+  }
+}
+
+// Reads the whole file in a child process; throws DamagedFile if the child crashes or hangs.
+// Returns without a verdict where no child can be made (the reads then run unguarded).
+void read_in_guarded_child(const std::filesystem::path& file) {
+  void* shared = mmap(nullptr, sizeof(GuardProgress), PROT_READ | PROT_WRITE,
+                      MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+  if (shared == MAP_FAILED) return;
+  auto* progress = new (shared) GuardProgress{};
+  note(progress, "/", "opening the file");
+  // The child holds the write end of a pipe until it ends: the parent sees the end at once.
+  int pipe_ends[2];
+  if (pipe2(pipe_ends, O_CLOEXEC) != 0) {
+    munmap(shared, sizeof(GuardProgress));
+    return;
+  }
+  const pid_t pid = fork();
+  if (pid < 0) {
+    close(pipe_ends[0]);
+    close(pipe_ends[1]);
+    munmap(shared, sizeof(GuardProgress));
+    return;
+  }
+  if (pid == 0) {
+    close(pipe_ends[0]);
+    // A crash report (a sanitizer's) is not for the user: the parent words it.
+    const int null = open("/dev/null", O_WRONLY);
+    if (null >= 0) dup2(null, STDERR_FILENO);
+    try {
+      const hid_t id = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+      if (id >= 0) {
+        std::set<haddr_t> seen;
+        read_object(id, "/", seen, progress);
+      }
+    } catch (...) {
+      // Out of memory and the like: not a crash of the library; the parent reads and reports.
+    }
+    // _exit: no atexit handlers, so the parent's open HDF5 files are not flushed from here.
+    _exit(0);
+  }
+  close(pipe_ends[1]);
+  // The child reads metadata and strings: milliseconds for tfmb's files. The limit only stops a
+  // loop; it grows with the file for chunked data read from a slow disk.
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(file, ec);
+  const auto limit = std::chrono::seconds(10 + (ec ? 0 : bytes / 10'000'000));
+  const auto deadline = std::chrono::steady_clock::now() + limit;
+  bool hung = false;
+  for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+        deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) {
+      hung = true;
+      break;
+    }
+    pollfd end{pipe_ends[0], POLLIN, 0};
+    const int ready = poll(&end, 1, static_cast<int>(left.count()));
+    if (ready < 0 && errno == EINTR) continue;
+    if (ready < 0) break;  // cannot watch: wait for the child below
+    if (ready > 0) {
+      char byte;
+      if (read(pipe_ends[0], &byte, 1) <= 0) break;  // end of file: the child has ended
+    }
+  }
+  close(pipe_ends[0]);
+  if (hung) kill(pid, SIGKILL);
+  int status = 0;
+  pid_t done;
+  do {
+    done = waitpid(pid, &status, 0);
+  } while (done < 0 && errno == EINTR);
+  const std::string object = progress->object;
+  const std::string what = progress->what;
+  munmap(shared, sizeof(GuardProgress));
+  if (done != pid) return;  // e.g. SIGCHLD ignored: the child's end is not ours to know
+  const std::string where = file.string() + ": " + object + ": ";
+  if (hung) {
+    throw DamagedFile(where + what + " did not finish in " + std::to_string(limit.count()) +
+                      " s (a loop in damaged HDF5 metadata): damaged file");
+  }
+  if (WIFSIGNALED(status)) {
+    throw DamagedFile(where + what + " crashed the HDF5 library (" +
+                      strsignal(WTERMSIG(status)) + "): damaged file");
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    throw DamagedFile(where + what + " crashed the HDF5 library (exit status " +
+                      std::to_string(WEXITSTATUS(status)) + "): damaged file");
+  }
+}
+
 }  // namespace
 
 bool is_hdf5_file(const std::filesystem::path& file) {
@@ -168,6 +376,7 @@ Reader::Reader(const std::filesystem::path& file) : path_(file) {
   if (H5Fis_hdf5(file.c_str()) <= 0) {
     throw BadInput(file.string() + ": not an HDF5 file (no HDF5 signature)");
   }
+  read_in_guarded_child(file);
   file_id_ = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   if (file_id_ < 0) {
     const std::string cause = hdf5_cause();

@@ -49,7 +49,8 @@ using Extent = std::optional<std::size_t>;
 class Reader {
  public:
   // Throws BadInput if the file does not exist or is not an HDF5 file, DamagedFile if HDF5
-  // cannot open it.
+  // cannot open it or if reading it once in a child process crashes or hangs the library (see
+  // h5.cpp: parts of the file format carry no checksum and the library trusts them).
   explicit Reader(const std::filesystem::path& file);
   ~Reader();
   Reader(const Reader&) = delete;
