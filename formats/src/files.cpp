@@ -1,6 +1,8 @@
 #include "tfmb/formats/files.hpp"
 
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <ctime>
 #include <fstream>
 #include <functional>
@@ -210,12 +212,25 @@ std::filesystem::path write_xdmf_sidecar(const std::filesystem::path& h5_file) {
 
   std::filesystem::path tmp = sidecar;
   tmp += ".tmp";
-  {
-    std::ofstream out(tmp);
-    out << xml.str();
-    if (!out) throw InternalError(tmp.string() + ": cannot write XDMF sidecar");
+  errno = 0;
+  std::ofstream out(tmp);
+  out << xml.str();
+  // A full disk shows when the buffer is written out, at close: checked there, and the partial
+  // temporary file removed.
+  out.close();
+  std::error_code ec;
+  if (!out) {
+    const std::string reason = errno ? std::strerror(errno) : "write failed";
+    std::filesystem::remove(tmp, ec);
+    throw InternalError(sidecar.string() + ": cannot write the XDMF sidecar (" + reason + ")");
   }
-  std::filesystem::rename(tmp, sidecar);
+  std::filesystem::rename(tmp, sidecar, ec);
+  if (ec) {
+    const std::string reason = ec.message();
+    std::filesystem::remove(tmp, ec);
+    throw InternalError(sidecar.string() + ": cannot rename from " + tmp.string() + " (" + reason +
+                        ")");
+  }
   return sidecar;
 }
 

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <functional>
@@ -771,6 +772,56 @@ std::vector<double> Reader::attr_f64_vector(const std::string& object_path,
 // ---------------------------------------------------------------------------------------------
 // Writer
 
+struct FileImage {
+  void* data = nullptr;       // HDF5's buffer, handed over when the file is closed
+  std::size_t capacity = 0;   // its size in bytes (the file ends before, see image_size)
+};
+
+namespace {
+
+// The core driver keeps the file in one buffer that it grows with image_realloc and releases
+// with image_free when the file is closed: these callbacks keep it at that point instead.
+void* image_malloc(std::size_t size, H5FD_file_image_op_t, void* udata) {
+  void* data = std::malloc(size);
+  if (data) static_cast<FileImage*>(udata)->capacity = size;
+  return data;
+}
+void* image_memcpy(void* to, const void* from, std::size_t size, H5FD_file_image_op_t, void*) {
+  return std::memcpy(to, from, size);
+}
+void* image_realloc(void* data, std::size_t size, H5FD_file_image_op_t, void* udata) {
+  void* grown = std::realloc(data, size);
+  if (grown) static_cast<FileImage*>(udata)->capacity = size;
+  return grown;
+}
+herr_t image_free(void* data, H5FD_file_image_op_t operation, void* udata) {
+  if (operation == H5FD_FILE_IMAGE_OP_FILE_CLOSE) {
+    static_cast<FileImage*>(udata)->data = data;
+  } else {
+    std::free(data);
+  }
+  return 0;
+}
+void* image_udata_copy(void* udata) { return udata; }  // one FileImage per Writer, shared
+herr_t image_udata_free(void*) { return 0; }
+
+// The length of a closed file's image: the end-of-file address of its superblock (version 2 or 3,
+// what the 1.10 format bounds give: signature 8 bytes, version, offset and length sizes, flags,
+// then base, extension and end-of-file addresses of 8 bytes). 0 if the image is not one.
+std::size_t image_size(const FileImage& image) {
+  const auto* bytes = static_cast<const unsigned char*>(image.data);
+  static const unsigned char signature[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
+  if (!bytes || image.capacity < 48 || std::memcmp(bytes, signature, 8) != 0 ||
+      (bytes[8] != 2 && bytes[8] != 3) || bytes[9] != 8) {
+    return 0;
+  }
+  std::uint64_t end = 0;
+  for (int i = 7; i >= 0; --i) end = (end << 8) | bytes[28 + i];  // little-endian
+  return end <= image.capacity ? static_cast<std::size_t>(end) : 0;
+}
+
+}  // namespace
+
 Writer::Writer(const std::filesystem::path& file) : path_(file) {
   silence_hdf5_errors();
   tmp_path_ = file;
@@ -779,6 +830,10 @@ Writer::Writer(const std::filesystem::path& file) : path_(file) {
   std::filesystem::remove(tmp_path_, ec);
   if (file.has_parent_path() && !file.parent_path().empty()) {
     std::filesystem::create_directories(file.parent_path(), ec);
+  }
+  tmp_fd_ = ::open(tmp_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (tmp_fd_ < 0) {
+    throw InternalError(tmp_path_.string() + ": cannot create file (" + std::strerror(errno) + ")");
   }
   Handle fcpl(H5Pcreate(H5P_FILE_CREATE));
   // Byte-reproducible output: the root group carries no modification times either.
@@ -789,17 +844,33 @@ Writer::Writer(const std::filesystem::path& file) : path_(file) {
   // flipped address or size and crash (issue 23). The upper bound is pinned too, so that a newer
   // HDF5 still writes files that 1.10 readers (Debian's h5py) open.
   Handle fapl(H5Pcreate(H5P_FILE_ACCESS));
-  if (H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V110, H5F_LIBVER_V110) < 0) {
-    throw InternalError(tmp_path_.string() + ": cannot select the HDF5 1.10 file format");
+  // In memory (the core driver without a backing store, growing by 1 MiB): see the class comment.
+  image_ = std::make_unique<FileImage>();
+  H5FD_file_image_callbacks_t callbacks = {image_malloc,     image_memcpy,     image_realloc,
+                                           image_free,       image_udata_copy, image_udata_free,
+                                           image_.get()};
+  if (H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V110, H5F_LIBVER_V110) < 0 ||
+      H5Pset_fapl_core(fapl.get(), std::size_t{1} << 20, false) < 0 ||
+      H5Pset_file_image_callbacks(fapl.get(), &callbacks) < 0) {
+    ::close(tmp_fd_);
+    std::filesystem::remove(tmp_path_, ec);
+    throw InternalError(tmp_path_.string() + ": cannot set up the HDF5 1.10 file format in memory");
   }
   file_id_ = H5Fcreate(tmp_path_.c_str(), H5F_ACC_TRUNC, fcpl.get(), fapl.get());
   if (file_id_ < 0) {
-    throw InternalError(tmp_path_.string() + ": cannot create file (directory writable?)");
+    const std::string cause = hdf5_cause();
+    ::close(tmp_fd_);
+    std::filesystem::remove(tmp_path_, ec);
+    throw InternalError(tmp_path_.string() + ": cannot create the HDF5 file in memory (" + cause +
+                        ")");
   }
 }
 
 Writer::~Writer() {
+  // In memory: closing cannot fail on a disk, whatever went wrong before.
   if (file_id_ >= 0) H5Fclose(file_id_);
+  if (image_) std::free(image_->data);
+  if (tmp_fd_ >= 0) ::close(tmp_fd_);
   if (!committed_) {
     std::error_code ec;
     std::filesystem::remove(tmp_path_, ec);
@@ -845,7 +916,7 @@ void Writer::write_raw(const std::string& dataset_path, bool is_float, const voi
   if (!dataset.valid()) fail(dataset_path, "cannot create dataset (exists already?)");
   if (element_count(shape) > 0 &&
       H5Dwrite(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0) {
-    fail(dataset_path, "cannot write dataset (disk full?)");
+    fail(dataset_path, "cannot write dataset (out of memory?)");
   }
   dataset.reset();
   set_attr(dataset_path, "units", units);
@@ -970,14 +1041,38 @@ void Writer::set_attr(const std::string& object_path, const std::string& name,
 
 void Writer::commit() {
   if (committed_) return;
-  if (H5Fflush(file_id_, H5F_SCOPE_GLOBAL) < 0 || H5Fclose(file_id_) < 0) {
-    file_id_ = -1;
-    fail("/", "cannot close file (disk full?)");
-  }
+  if (file_id_ < 0) fail("/", "file already closed");
+  const herr_t closed = H5Fclose(file_id_);
+  const std::string cause = closed < 0 ? hdf5_cause() : std::string();
   file_id_ = -1;
+  if (closed < 0) fail("/", "cannot close the HDF5 file (" + cause + ")");
+  const std::size_t size = image_size(*image_);
+  if (size == 0) fail("/", "HDF5 left no file image to write");
+  const auto* bytes = static_cast<const char*>(image_->data);
+  for (std::size_t written = 0; written < size;) {
+    const ssize_t n = ::write(tmp_fd_, bytes + written, size - written);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      throw InternalError(path_.string() + ": cannot write " + std::to_string(size) + " bytes to " +
+                          tmp_path_.string() + " (" +
+                          (n < 0 ? std::strerror(errno) : "nothing written") + ")");
+    }
+    written += static_cast<std::size_t>(n);
+  }
+  std::free(image_->data);
+  image_->data = nullptr;
+  const int fd = tmp_fd_;
+  tmp_fd_ = -1;
+  if (::close(fd) != 0) {  // where a network file system reports what did not fit
+    throw InternalError(path_.string() + ": cannot write " + tmp_path_.string() + " (" +
+                        std::strerror(errno) + ")");
+  }
   std::error_code ec;
   std::filesystem::rename(tmp_path_, path_, ec);
-  if (ec) throw InternalError(path_.string() + ": cannot rename from " + tmp_path_.string() + ": " + ec.message());
+  if (ec) {
+    throw InternalError(path_.string() + ": cannot rename from " + tmp_path_.string() + ": " +
+                        ec.message());
+  }
   committed_ = true;
 }
 

@@ -14,6 +14,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -111,11 +112,18 @@ class Reader {
   std::int64_t file_id_ = -1;
 };
 
-// Writes one HDF5 file atomically: everything goes to "<file>.tmp", commit() closes it and
-// renames it over <file>. A Writer destroyed without commit() removes the temporary file, so a
-// crash or an exception never leaves a partial file that make would take as up to date.
+// The bytes of a file a Writer builds in memory (h5.cpp).
+struct FileImage;
+
+// Writes one HDF5 file atomically: HDF5 builds it in memory, commit() closes it there, writes
+// its bytes to "<file>.tmp" and renames that over <file>. A Writer destroyed without commit()
+// removes the temporary file, so a crash or an exception never leaves a partial file that make
+// would take as up to date. HDF5 never writes to the disk itself: a write it failed (a full disk)
+// left its state broken, and its clean-up at exit then crashed; the Writer's own writes fail
+// with an InternalError (exit 4) naming the file and the system's reason.
 class Writer {
  public:
+  // Creates <file>.tmp at once, so that an unwritable directory fails before any data is written.
   explicit Writer(const std::filesystem::path& file);
   ~Writer();
   Writer(const Writer&) = delete;
@@ -164,7 +172,8 @@ class Writer {
   void set_attr(const std::string& object_path, const std::string& name,
                 const std::vector<double>& value);
 
-  // Closes the file and renames it into place. Throws InternalError on failure.
+  // Closes the file, writes it to <file>.tmp and renames that into place. Throws InternalError
+  // on failure (the temporary file is removed).
   void commit();
 
  private:
@@ -176,6 +185,8 @@ class Writer {
 
   std::filesystem::path path_;
   std::filesystem::path tmp_path_;
+  std::unique_ptr<FileImage> image_;
+  int tmp_fd_ = -1;
   std::int64_t file_id_ = -1;
   bool committed_ = false;
 };
