@@ -46,7 +46,8 @@ std::string hdf5_cause() {
   H5Ewalk2(
       H5E_DEFAULT, H5E_WALK_UPWARD,
       [](unsigned n, const H5E_error2_t* error, void* data) -> herr_t {
-        if (n == 0 && error->desc) *static_cast<std::string*>(data) = error->desc;
+        if (n == 0 && error->desc)
+          *static_cast<std::string*>(data) = error->desc;
         return 0;
       },
       &cause);
@@ -185,16 +186,19 @@ constexpr std::size_t guard_read_limit = std::size_t{1} << 29;
 // Reads `count` elements of an attribute (dataset == false) or dataset of file type `type`, in
 // the type's native form (variable-length strings as C strings), and frees what HDF5 allocated.
 void read_values(hid_t object, bool dataset, hid_t type, hid_t space, hsize_t count) {
-  if (count == 0) return;
+  if (count == 0)
+    return;
   const bool vlen_string = H5Tget_class(type) == H5T_STRING && H5Tis_variable_str(type) > 0;
   Handle memory_type(vlen_string ? string_type() : H5Tget_native_type(type, H5T_DIR_DEFAULT));
-  if (!memory_type.valid()) return;
+  if (!memory_type.valid())
+    return;
   const std::size_t size = H5Tget_size(memory_type.get());
-  if (size == 0 || count > guard_read_limit / size) return;
+  if (size == 0 || count > guard_read_limit / size)
+    return;
   std::vector<unsigned char> buffer(static_cast<std::size_t>(count) * size);
-  const herr_t read = dataset ? H5Dread(object, memory_type.get(), H5S_ALL, H5S_ALL,
-                                        H5P_DEFAULT, buffer.data())
-                              : H5Aread(object, memory_type.get(), buffer.data());
+  const herr_t read =
+      dataset ? H5Dread(object, memory_type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer.data())
+              : H5Aread(object, memory_type.get(), buffer.data());
   if (read >= 0 && (vlen_string || H5Tdetect_class(memory_type.get(), H5T_VLEN) > 0)) {
     H5Dvlen_reclaim(memory_type.get(), space, H5P_DEFAULT, buffer.data());
   }
@@ -207,21 +211,27 @@ void read_object(hid_t file, const std::string& path, std::set<haddr_t>& seen,
                  GuardProgress* progress) {
   note(progress, path, "reading the object header");
   H5O_info_t info;
-  if (H5Oget_info_by_name(file, path.c_str(), &info, H5P_DEFAULT) < 0) return;
-  if (!seen.insert(info.addr).second) return;  // a hard link to an object already read
+  if (H5Oget_info_by_name(file, path.c_str(), &info, H5P_DEFAULT) < 0)
+    return;
+  if (!seen.insert(info.addr).second)
+    return;  // a hard link to an object already read
   Handle object(H5Oopen(file, path.c_str(), H5P_DEFAULT));
-  if (!object.valid()) return;
+  if (!object.valid())
+    return;
 
   note(progress, path, "reading the attributes");
   std::vector<std::string> attributes;
-  if (!attribute_names(object.get(), attributes)) return;
+  if (!attribute_names(object.get(), attributes))
+    return;
   for (const std::string& name : attributes) {
     note(progress, path, "reading attribute '" + name + "'");
     Handle attr(H5Aopen(object.get(), name.c_str(), H5P_DEFAULT));
-    if (!attr.valid()) continue;
+    if (!attr.valid())
+      continue;
     Handle type(H5Aget_type(attr.get()));
     Handle space(H5Aget_space(attr.get()));
-    if (!type.valid() || !space.valid()) continue;
+    if (!type.valid() || !space.valid())
+      continue;
     const hssize_t count = H5Sget_simple_extent_npoints(space.get());
     if (count > 0) {
       read_values(attr.get(), false, type.get(), space.get(), static_cast<hsize_t>(count));
@@ -233,9 +243,11 @@ void read_object(hid_t file, const std::string& path, std::set<haddr_t>& seen,
     Handle type(H5Dget_type(object.get()));
     Handle space(H5Dget_space(object.get()));
     Handle plist(H5Dget_create_plist(object.get()));
-    if (!type.valid() || !space.valid() || !plist.valid()) return;
+    if (!type.valid() || !space.valid() || !plist.valid())
+      return;
     const hssize_t count = H5Sget_simple_extent_npoints(space.get());
-    if (count <= 0) return;
+    if (count <= 0)
+      return;
     // Plain contiguous numbers are copied from the file as they are; what the library decodes
     // (heap references of strings, chunk indexes, compact storage in the header) is read here.
     const bool decoded = H5Tdetect_class(type.get(), H5T_STRING) > 0 ||
@@ -252,12 +264,12 @@ void read_object(hid_t file, const std::string& path, std::set<haddr_t>& seen,
   } else if (info.type == H5O_TYPE_GROUP) {
     note(progress, path, "reading the group's links");
     std::vector<std::string> links;
-    if (!link_names(object.get(), links)) return;
+    if (!link_names(object.get(), links))
+      return;
     for (const std::string& name : links) {
       const std::string child = (path == "/" ? "/" : path + "/") + name;
       H5L_info_t link;
-      if (H5Lget_info(file, child.c_str(), &link, H5P_DEFAULT) < 0 ||
-          link.type != H5L_TYPE_HARD) {
+      if (H5Lget_info(file, child.c_str(), &link, H5P_DEFAULT) < 0 || link.type != H5L_TYPE_HARD) {
         continue;  // soft and external links are not followed by the readers either
       }
       read_object(file, child, seen, progress);
@@ -270,7 +282,8 @@ void read_object(hid_t file, const std::string& path, std::set<haddr_t>& seen,
 void read_in_guarded_child(const std::filesystem::path& file) {
   void* shared = mmap(nullptr, sizeof(GuardProgress), PROT_READ | PROT_WRITE,
                       MAP_SHARED | MAP_ANONYMOUS, -1, 0);
-  if (shared == MAP_FAILED) return;
+  if (shared == MAP_FAILED)
+    return;
   auto* progress = new (shared) GuardProgress{};
   note(progress, "/", "opening the file");
   // The child holds the write end of a pipe until it ends: the parent sees the end at once.
@@ -290,7 +303,8 @@ void read_in_guarded_child(const std::filesystem::path& file) {
     close(pipe_ends[0]);
     // A crash report (a sanitizer's) is not for the user: the parent words it.
     const int null = open("/dev/null", O_WRONLY);
-    if (null >= 0) dup2(null, STDERR_FILENO);
+    if (null >= 0)
+      dup2(null, STDERR_FILENO);
     try {
       const hid_t id = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
       if (id >= 0) {
@@ -320,15 +334,19 @@ void read_in_guarded_child(const std::filesystem::path& file) {
     }
     pollfd end{pipe_ends[0], POLLIN, 0};
     const int ready = poll(&end, 1, static_cast<int>(left.count()));
-    if (ready < 0 && errno == EINTR) continue;
-    if (ready < 0) break;  // cannot watch: wait for the child below
+    if (ready < 0 && errno == EINTR)
+      continue;
+    if (ready < 0)
+      break;  // cannot watch: wait for the child below
     if (ready > 0) {
       char byte;
-      if (read(pipe_ends[0], &byte, 1) <= 0) break;  // end of file: the child has ended
+      if (read(pipe_ends[0], &byte, 1) <= 0)
+        break;  // end of file: the child has ended
     }
   }
   close(pipe_ends[0]);
-  if (hung) kill(pid, SIGKILL);
+  if (hung)
+    kill(pid, SIGKILL);
   int status = 0;
   pid_t done;
   do {
@@ -337,15 +355,16 @@ void read_in_guarded_child(const std::filesystem::path& file) {
   const std::string object = progress->object;
   const std::string what = progress->what;
   munmap(shared, sizeof(GuardProgress));
-  if (done != pid) return;  // e.g. SIGCHLD ignored: the child's end is not ours to know
+  if (done != pid)
+    return;  // e.g. SIGCHLD ignored: the child's end is not ours to know
   const std::string where = file.string() + ": " + object + ": ";
   if (hung) {
     throw DamagedFile(where + what + " did not finish in " + std::to_string(limit.count()) +
                       " s (a loop in damaged HDF5 metadata): damaged file");
   }
   if (WIFSIGNALED(status)) {
-    throw DamagedFile(where + what + " crashed the HDF5 library (" +
-                      strsignal(WTERMSIG(status)) + "): damaged file");
+    throw DamagedFile(where + what + " crashed the HDF5 library (" + strsignal(WTERMSIG(status)) +
+                      "): damaged file");
   }
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     throw DamagedFile(where + what + " crashed the HDF5 library (exit status " +
@@ -382,8 +401,8 @@ Reader::Reader(const std::filesystem::path& file) : path_(file) {
   if (file_id_ < 0) {
     const std::string cause = hdf5_cause();
     throw DamagedFile(file.string() + ": cannot open as HDF5 (" +
-                   (cause.empty() ? std::string("truncated or corrupted file?") : cause) +
-                   "): damaged file");
+                      (cause.empty() ? std::string("truncated or corrupted file?") : cause) +
+                      "): damaged file");
   }
 }
 
@@ -425,13 +444,18 @@ bool Reader::exists(const std::string& object_path) const {
     if (end == std::string::npos) end = object_path.size();
     partial = object_path.substr(0, end);
     const htri_t link = H5Lexists(file_id_, partial.c_str(), H5P_DEFAULT);
-    if (link < 0) fail_hdf5(partial, "cannot read the group's links");
-    if (link == 0) return false;
+    if (link < 0)
+      fail_hdf5(partial, "cannot read the group's links");
+    if (link == 0)
+      return false;
     const htri_t object = H5Oexists_by_name(file_id_, partial.c_str(), H5P_DEFAULT);
-    if (object < 0) fail_hdf5(partial, "cannot resolve the link");
-    if (object == 0) return false;
+    if (object < 0)
+      fail_hdf5(partial, "cannot resolve the link");
+    if (object == 0)
+      return false;
     // Below a dataset nothing exists (and H5Lexists would fail on the path).
-    if (end < object_path.size() && object_type(partial) != H5O_TYPE_GROUP) return false;
+    if (end < object_path.size() && object_type(partial) != H5O_TYPE_GROUP)
+      return false;
     start = end + 1;
   }
   return true;
@@ -448,9 +472,11 @@ bool Reader::is_dataset(const std::string& object_path) const {
 std::vector<std::string> Reader::children(const std::string& group_path) const {
   if (!is_group(group_path)) fail(group_path, "missing group");
   Handle group(H5Gopen2(file_id_, group_path.c_str(), H5P_DEFAULT));
-  if (!group.valid()) fail_hdf5(group_path, "cannot open group");
+  if (!group.valid())
+    fail_hdf5(group_path, "cannot open group");
   std::vector<std::string> names;
-  if (!link_names(group.get(), names)) fail_hdf5(group_path, "cannot list group");
+  if (!link_names(group.get(), names))
+    fail_hdf5(group_path, "cannot list group");
   std::sort(names.begin(), names.end());
   return names;
 }
@@ -459,15 +485,18 @@ DatasetInfo Reader::info(const std::string& dataset_path) const {
   if (!exists(dataset_path)) fail(dataset_path, "missing dataset");
   if (!is_dataset(dataset_path)) fail(dataset_path, "is a group, expected a dataset");
   Handle dataset(H5Dopen2(file_id_, dataset_path.c_str(), H5P_DEFAULT));
-  if (!dataset.valid()) fail_hdf5(dataset_path, "cannot open dataset");
+  if (!dataset.valid())
+    fail_hdf5(dataset_path, "cannot open dataset");
   Handle type(H5Dget_type(dataset.get()));
   Handle space(H5Dget_space(dataset.get()));
-  if (!type.valid() || !space.valid()) fail_hdf5(dataset_path, "cannot read type or shape");
+  if (!type.valid() || !space.valid())
+    fail_hdf5(dataset_path, "cannot read type or shape");
   DatasetInfo result;
   result.dtype = dtype_of(type.get());
   result.dtype_name = dtype_name_of(type.get());
   const int rank = H5Sget_simple_extent_ndims(space.get());
-  if (rank < 0) fail_hdf5(dataset_path, "cannot read shape");
+  if (rank < 0)
+    fail_hdf5(dataset_path, "cannot read shape");
   std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
   H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
   result.shape.assign(dims.begin(), dims.end());
@@ -484,7 +513,8 @@ std::vector<T> read_numeric(const Reader& reader, hid_t file_id, const std::stri
                           (expected == DType::float64 ? "float64" : "int64"));
   }
   Handle dataset(H5Dopen2(file_id, path.c_str(), H5P_DEFAULT));
-  if (!dataset.valid()) reader.fail_hdf5(path, "cannot open dataset");
+  if (!dataset.valid())
+    reader.fail_hdf5(path, "cannot open dataset");
   // A dataset without filters stores every value it declares; one that declares more than the
   // file holds is corrupted (a flipped byte in its shape: 2^40 rows made every reader try to
   // allocate 16 TB and die out of memory) and is refused before anything is allocated.
@@ -615,7 +645,8 @@ std::vector<std::string> Reader::read_strings(const std::string& dataset_path) c
   }
   if (info.shape.size() > 1) fail(dataset_path, "wrong shape " + shape_text(info.shape) + ", expected (n,)");
   Handle dataset(H5Dopen2(file_id_, dataset_path.c_str(), H5P_DEFAULT));
-  if (!dataset.valid()) fail_hdf5(dataset_path, "cannot open dataset");
+  if (!dataset.valid())
+    fail_hdf5(dataset_path, "cannot open dataset");
   Handle file_type(H5Dget_type(dataset.get()));
   if (H5Tis_variable_str(file_type.get()) <= 0) fail(dataset_path, "expected variable-length strings");
   Handle memory_type(string_type());
@@ -637,16 +668,19 @@ std::vector<std::string> Reader::read_strings(const std::string& dataset_path) c
 bool Reader::has_attr(const std::string& object_path, const std::string& name) const {
   if (!exists(object_path)) return false;
   const htri_t found = H5Aexists_by_name(file_id_, object_path.c_str(), name.c_str(), H5P_DEFAULT);
-  if (found < 0) fail_hdf5(object_path, "cannot read the attributes");
+  if (found < 0)
+    fail_hdf5(object_path, "cannot read the attributes");
   return found > 0;
 }
 
 std::vector<std::string> Reader::attr_names(const std::string& object_path) const {
   if (!exists(object_path)) fail(object_path, "missing object");
   Handle object(H5Oopen(file_id_, object_path.c_str(), H5P_DEFAULT));
-  if (!object.valid()) fail_hdf5(object_path, "cannot open object");
+  if (!object.valid())
+    fail_hdf5(object_path, "cannot open object");
   std::vector<std::string> names;
-  if (!attribute_names(object.get(), names)) fail_hdf5(object_path, "cannot list the attributes");
+  if (!attribute_names(object.get(), names))
+    fail_hdf5(object_path, "cannot list the attributes");
   std::sort(names.begin(), names.end());
   return names;
 }
@@ -656,7 +690,8 @@ Handle open_attr(const Reader& reader, hid_t file_id, const std::string& object_
                  const std::string& name) {
   if (!reader.has_attr(object_path, name)) reader.fail(object_path, "missing attribute '" + name + "'");
   Handle attr(H5Aopen_by_name(file_id, object_path.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT));
-  if (!attr.valid()) reader.fail_hdf5(object_path, "cannot open attribute '" + name + "'");
+  if (!attr.valid())
+    reader.fail_hdf5(object_path, "cannot open attribute '" + name + "'");
   return attr;
 }
 
@@ -773,8 +808,8 @@ std::vector<double> Reader::attr_f64_vector(const std::string& object_path,
 // Writer
 
 struct FileImage {
-  void* data = nullptr;       // HDF5's buffer, handed over when the file is closed
-  std::size_t capacity = 0;   // its size in bytes (the file ends before, see image_size)
+  void* data = nullptr;      // HDF5's buffer, handed over when the file is closed
+  std::size_t capacity = 0;  // its size in bytes (the file ends before, see image_size)
 };
 
 namespace {
@@ -783,7 +818,8 @@ namespace {
 // with image_free when the file is closed: these callbacks keep it at that point instead.
 void* image_malloc(std::size_t size, H5FD_file_image_op_t, void* udata) {
   void* data = std::malloc(size);
-  if (data) static_cast<FileImage*>(udata)->capacity = size;
+  if (data)
+    static_cast<FileImage*>(udata)->capacity = size;
   return data;
 }
 void* image_memcpy(void* to, const void* from, std::size_t size, H5FD_file_image_op_t, void*) {
@@ -791,7 +827,8 @@ void* image_memcpy(void* to, const void* from, std::size_t size, H5FD_file_image
 }
 void* image_realloc(void* data, std::size_t size, H5FD_file_image_op_t, void* udata) {
   void* grown = std::realloc(data, size);
-  if (grown) static_cast<FileImage*>(udata)->capacity = size;
+  if (grown)
+    static_cast<FileImage*>(udata)->capacity = size;
   return grown;
 }
 herr_t image_free(void* data, H5FD_file_image_op_t operation, void* udata) {
@@ -802,8 +839,13 @@ herr_t image_free(void* data, H5FD_file_image_op_t operation, void* udata) {
   }
   return 0;
 }
-void* image_udata_copy(void* udata) { return udata; }  // one FileImage per Writer, shared
-herr_t image_udata_free(void*) { return 0; }
+// One FileImage per Writer: property list copies share it.
+void* image_udata_copy(void* udata) {
+  return udata;
+}
+herr_t image_udata_free(void*) {
+  return 0;
+}
 
 // The length of a closed file's image: the end-of-file address of its superblock (version 2 or 3,
 // what the 1.10 format bounds give: signature 8 bytes, version, offset and length sizes, flags,
@@ -816,7 +858,8 @@ std::size_t image_size(const FileImage& image) {
     return 0;
   }
   std::uint64_t end = 0;
-  for (int i = 7; i >= 0; --i) end = (end << 8) | bytes[28 + i];  // little-endian
+  for (int i = 7; i >= 0; --i)
+    end = (end << 8) | bytes[28 + i];  // little-endian
   return end <= image.capacity ? static_cast<std::size_t>(end) : 0;
 }
 
@@ -846,8 +889,8 @@ Writer::Writer(const std::filesystem::path& file) : path_(file) {
   Handle fapl(H5Pcreate(H5P_FILE_ACCESS));
   // In memory (the core driver without a backing store, growing by 1 MiB): see the class comment.
   image_ = std::make_unique<FileImage>();
-  H5FD_file_image_callbacks_t callbacks = {image_malloc,     image_memcpy,     image_realloc,
-                                           image_free,       image_udata_copy, image_udata_free,
+  H5FD_file_image_callbacks_t callbacks = {image_malloc, image_memcpy,     image_realloc,
+                                           image_free,   image_udata_copy, image_udata_free,
                                            image_.get()};
   if (H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V110, H5F_LIBVER_V110) < 0 ||
       H5Pset_fapl_core(fapl.get(), std::size_t{1} << 20, false) < 0 ||
@@ -869,8 +912,10 @@ Writer::Writer(const std::filesystem::path& file) : path_(file) {
 Writer::~Writer() {
   // In memory: closing cannot fail on a disk, whatever went wrong before.
   if (file_id_ >= 0) H5Fclose(file_id_);
-  if (image_) std::free(image_->data);
-  if (tmp_fd_ >= 0) ::close(tmp_fd_);
+  if (image_)
+    std::free(image_->data);
+  if (tmp_fd_ >= 0)
+    ::close(tmp_fd_);
   if (!committed_) {
     std::error_code ec;
     std::filesystem::remove(tmp_path_, ec);
@@ -1041,17 +1086,21 @@ void Writer::set_attr(const std::string& object_path, const std::string& name,
 
 void Writer::commit() {
   if (committed_) return;
-  if (file_id_ < 0) fail("/", "file already closed");
+  if (file_id_ < 0)
+    fail("/", "file already closed");
   const herr_t closed = H5Fclose(file_id_);
   const std::string cause = closed < 0 ? hdf5_cause() : std::string();
   file_id_ = -1;
-  if (closed < 0) fail("/", "cannot close the HDF5 file (" + cause + ")");
+  if (closed < 0)
+    fail("/", "cannot close the HDF5 file (" + cause + ")");
   const std::size_t size = image_size(*image_);
-  if (size == 0) fail("/", "HDF5 left no file image to write");
+  if (size == 0)
+    fail("/", "HDF5 left no file image to write");
   const auto* bytes = static_cast<const char*>(image_->data);
   for (std::size_t written = 0; written < size;) {
     const ssize_t n = ::write(tmp_fd_, bytes + written, size - written);
-    if (n < 0 && errno == EINTR) continue;
+    if (n < 0 && errno == EINTR)
+      continue;
     if (n <= 0) {
       throw InternalError(path_.string() + ": cannot write " + std::to_string(size) + " bytes to " +
                           tmp_path_.string() + " (" +

@@ -156,9 +156,10 @@ TEST(FormatsMesh, SidecarOfAFileNamedWithXmlSpecialCharactersParses) {
       "sys.exit(0 if ok else 1)\"";
   EXPECT_EQ(std::system(parse.c_str()), 0) << test::read_bytes(sidecar);
   if (std::system("/usr/bin/python3 -c 'import meshio' 2>/dev/null") == 0) {
-    const std::string read = "/usr/bin/python3 -c \"import meshio, os, sys\n"
-                             "m = meshio.read(os.environ['TFMB_TEST_SIDECAR'])\n"
-                             "sys.exit(0 if len(m.points) == 5 else 1)\"";
+    const std::string read =
+        "/usr/bin/python3 -c \"import meshio, os, sys\n"
+        "m = meshio.read(os.environ['TFMB_TEST_SIDECAR'])\n"
+        "sys.exit(0 if len(m.points) == 5 else 1)\"";
     EXPECT_EQ(std::system(read.c_str()), 0) << "meshio";
   }
 }
