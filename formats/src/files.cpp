@@ -1,6 +1,8 @@
 #include "tfmb/formats/files.hpp"
 
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <ctime>
 #include <fstream>
 #include <functional>
@@ -123,19 +125,52 @@ Mesh read_mesh(const h5::Reader& file) {
   return mesh;
 }
 
+namespace {
+// File names and dataset names are free text (a run directory named "R&D", a field written by
+// an external tool): copied as they stand, `&` or `<` made the sidecar ill-formed XML, which
+// every XML parser (meshio's, ParaView's) refuses. Escaped, the parser hands back the exact name.
+std::string xml_escape(const std::string& text) {
+  std::string escaped;
+  escaped.reserve(text.size());
+  for (char c : text) {
+    switch (c) {
+      case '&':
+        escaped += "&amp;";
+        break;
+      case '<':
+        escaped += "&lt;";
+        break;
+      case '>':
+        escaped += "&gt;";
+        break;
+      case '"':
+        escaped += "&quot;";
+        break;
+      case '\'':
+        escaped += "&apos;";
+        break;
+      default:
+        escaped += c;
+    }
+  }
+  return escaped;
+}
+}  // namespace
+
 std::filesystem::path write_xdmf_sidecar(const std::filesystem::path& h5_file) {
   h5::Reader file(h5_file);
   std::filesystem::path sidecar = h5_file;
   sidecar.replace_extension(".xdmf");
-  const std::string data_file = h5_file.filename().string();
+  const std::string data_file = xml_escape(h5_file.filename().string());
   auto item = [&](const std::string& path, const std::string& dimensions, const char* type) {
     return "        <DataItem Dimensions=\"" + dimensions + "\" NumberType=\"" + type +
-           "\" Precision=\"8\" Format=\"HDF\">" + data_file + ":" + path + "</DataItem>\n";
+           "\" Precision=\"8\" Format=\"HDF\">" + data_file + ":" + xml_escape(path) +
+           "</DataItem>\n";
   };
   std::ostringstream xml;
   xml << "<?xml version=\"1.0\" ?>\n"
       << "<Xdmf Version=\"3.0\">\n  <Domain>\n"
-      << "    <Grid Name=\"" << h5_file.stem().string() << "\" GridType=\"Uniform\">\n";
+      << "    <Grid Name=\"" << xml_escape(h5_file.stem().string()) << "\" GridType=\"Uniform\">\n";
   std::size_t point_count = 0, cells = 0;
   if (file.exists("/mesh/points")) {
     // A 2D mesh of triangles and quads (flowmesh, solidmesh, flow, thermal).
@@ -175,11 +210,11 @@ std::filesystem::path write_xdmf_sidecar(const std::filesystem::path& h5_file) {
       }
       const std::size_t components = info.shape.size() == 2 ? info.shape[1] : 1;
       const char* type = components == 1 ? "Scalar" : components == 3 ? "Vector" : "Matrix";
-      xml << "      <Attribute Name=\"" << name << "\" AttributeType=\"" << type
+      xml << "      <Attribute Name=\"" << xml_escape(name) << "\" AttributeType=\"" << type
           << "\" Center=\"" << center << "\">\n        <DataItem Dimensions=\"" << info.shape[0];
       if (info.shape.size() == 2) xml << " " << components;
-      xml << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << data_file << ":" << path
-          << "</DataItem>\n      </Attribute>\n";
+      xml << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << data_file << ":"
+          << xml_escape(path) << "</DataItem>\n      </Attribute>\n";
     }
   };
   add_fields("/fields/point", "Node", point_count);
@@ -188,12 +223,25 @@ std::filesystem::path write_xdmf_sidecar(const std::filesystem::path& h5_file) {
 
   std::filesystem::path tmp = sidecar;
   tmp += ".tmp";
-  {
-    std::ofstream out(tmp);
-    out << xml.str();
-    if (!out) throw InternalError(tmp.string() + ": cannot write XDMF sidecar");
+  errno = 0;
+  std::ofstream out(tmp);
+  out << xml.str();
+  // A full disk shows when the buffer is written out, at close: checked there, and the partial
+  // temporary file removed.
+  out.close();
+  std::error_code ec;
+  if (!out) {
+    const std::string reason = errno ? std::strerror(errno) : "write failed";
+    std::filesystem::remove(tmp, ec);
+    throw InternalError(sidecar.string() + ": cannot write the XDMF sidecar (" + reason + ")");
   }
-  std::filesystem::rename(tmp, sidecar);
+  std::filesystem::rename(tmp, sidecar, ec);
+  if (ec) {
+    const std::string reason = ec.message();
+    std::filesystem::remove(tmp, ec);
+    throw InternalError(sidecar.string() + ": cannot rename from " + tmp.string() + " (" + reason +
+                        ")");
+  }
   return sidecar;
 }
 

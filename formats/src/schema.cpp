@@ -202,6 +202,8 @@ void check_attribute(const h5::Reader& file, const AttributeRule& rule, const st
       }
       case AttrType::float64_vector: file.attr_f64_vector(object, rule.name); break;
     }
+  } catch (const h5::DamagedFile&) {
+    throw;  // one line: what follows the first damage would be its consequences
   } catch (const BadInput& e) {
     problems.push_back({object, e.what()});
   }
@@ -257,6 +259,8 @@ std::vector<Problem> validate(const h5::Reader& file, const Schema& schema, bool
                    std::to_string(schema.major) + ".x); convert the file or update tfmb");
       return problems;
     }
+  } catch (const h5::DamagedFile&) {
+    throw;
   } catch (const BadInput& e) {
     problems.push_back({"/", e.what()});
     return problems;
@@ -326,6 +330,8 @@ std::vector<Problem> validate(const h5::Reader& file, const Schema& schema, bool
         } else if (rule.dtype == h5::DType::string) {
           file.read_strings(m.path);
         }
+      } catch (const h5::DamagedFile&) {
+        throw;
       } catch (const BadInput& e) {
         problems.push_back({m.path, e.what()});
       }

@@ -1,13 +1,25 @@
 #include "tfmb/common/h5.hpp"
 
+#include <fcntl.h>
 #include <hdf5.h>
+#include <poll.h>
+#include <sys/mman.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <functional>
+#include <new>
 #include <numeric>
+#include <set>
 #include <sstream>
 
 #include "tfmb/common/errors.hpp"
@@ -24,6 +36,22 @@ void silence_hdf5_errors() {
     return true;
   }();
   (void)silenced;
+}
+
+// The innermost entry of HDF5's error stack after a failed call ("incorrect metadata checksum
+// after all read attempts", "truncated file: eof = ..."), to say why a damaged file was refused.
+// Must be called before any other HDF5 call, which would clear the stack.
+std::string hdf5_cause() {
+  std::string cause;
+  H5Ewalk2(
+      H5E_DEFAULT, H5E_WALK_UPWARD,
+      [](unsigned n, const H5E_error2_t* error, void* data) -> herr_t {
+        if (n == 0 && error->desc)
+          *static_cast<std::string*>(data) = error->desc;
+        return 0;
+      },
+      &cause);
+  return cause;
 }
 
 // Closes an HDF5 identifier of any kind when it goes out of scope.
@@ -101,6 +129,249 @@ hid_t string_type() {
   return type;
 }
 
+// Names of a group's links, unsorted, from one walk of its link index in the order it is stored:
+// asking for them by position (H5Lget_name_by_idx) or in name order makes HDF5 build a table of
+// a large group's links, and HDF5 1.10 frees that table's unfilled entries when a damaged heap
+// stops the build (a crash in H5G__link_release_table). False if the walk failed (the HDF5 error
+// stack says why).
+bool link_names(hid_t group, std::vector<std::string>& names) {
+  hsize_t index = 0;
+  return H5Literate(
+             group, H5_INDEX_NAME, H5_ITER_NATIVE, &index,
+             [](hid_t, const char* name, const H5L_info_t*, void* data) -> herr_t {
+               static_cast<std::vector<std::string>*>(data)->emplace_back(name);
+               return 0;
+             },
+             &names) >= 0;
+}
+
+// The same for an object's attributes (more than 8 are kept in a heap, as links are).
+bool attribute_names(hid_t object, std::vector<std::string>& names) {
+  hsize_t index = 0;
+  return H5Aiterate2(
+             object, H5_INDEX_NAME, H5_ITER_NATIVE, &index,
+             [](hid_t, const char* name, const H5A_info_t*, void* data) -> herr_t {
+               static_cast<std::vector<std::string>*>(data)->emplace_back(name);
+               return 0;
+             },
+             &names) >= 0;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reading a file once in a child process before trusting it
+//
+// The 1.10 file format checksums the metadata, but not the global heap that holds variable-length
+// strings (every string attribute and dataset of a tfmb file), nor the heap references stored in
+// a string dataset's values, nor anything in files of the older format (external writers, h5py
+// defaults). HDF5 1.10 follows a damaged heap object's size or address without checking it: it
+// crashes (SIGSEGV in H5HG_read) or loops forever (a zeroed object size in H5HG's cache
+// deserialize). No API reads those structures without trusting them, so a child process reads
+// every attribute and every dataset the library would have to decode for us first; if it dies or
+// hangs, the file is refused with one line naming the object it was reading.
+
+// Shared with the child: what it is reading, for the parent's message if it dies there.
+struct GuardProgress {
+  char object[512];
+  char what[256];
+};
+
+void note(GuardProgress* progress, const std::string& object, const std::string& what) {
+  std::snprintf(progress->object, sizeof progress->object, "%s", object.c_str());
+  std::snprintf(progress->what, sizeof progress->what, "%s", what.c_str());
+}
+
+// Above this a value is not read in the child (the parent refuses or reads it itself).
+constexpr std::size_t guard_read_limit = std::size_t{1} << 29;
+
+// Reads `count` elements of an attribute (dataset == false) or dataset of file type `type`, in
+// the type's native form (variable-length strings as C strings), and frees what HDF5 allocated.
+void read_values(hid_t object, bool dataset, hid_t type, hid_t space, hsize_t count) {
+  if (count == 0)
+    return;
+  const bool vlen_string = H5Tget_class(type) == H5T_STRING && H5Tis_variable_str(type) > 0;
+  Handle memory_type(vlen_string ? string_type() : H5Tget_native_type(type, H5T_DIR_DEFAULT));
+  if (!memory_type.valid())
+    return;
+  const std::size_t size = H5Tget_size(memory_type.get());
+  if (size == 0 || count > guard_read_limit / size)
+    return;
+  std::vector<unsigned char> buffer(static_cast<std::size_t>(count) * size);
+  const herr_t read =
+      dataset ? H5Dread(object, memory_type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer.data())
+              : H5Aread(object, memory_type.get(), buffer.data());
+  if (read >= 0 && (vlen_string || H5Tdetect_class(memory_type.get(), H5T_VLEN) > 0)) {
+    H5Dvlen_reclaim(memory_type.get(), space, H5P_DEFAULT, buffer.data());
+  }
+}
+
+// Reads the object at `path` (its header, attributes and, for a dataset, values the library
+// decodes: strings, chunked or compact storage) and recurses into groups, each object once.
+// Failures are skipped: the parent reports them where it meets them, with the reason.
+void read_object(hid_t file, const std::string& path, std::set<haddr_t>& seen,
+                 GuardProgress* progress) {
+  note(progress, path, "reading the object header");
+  H5O_info_t info;
+  if (H5Oget_info_by_name(file, path.c_str(), &info, H5P_DEFAULT) < 0)
+    return;
+  if (!seen.insert(info.addr).second)
+    return;  // a hard link to an object already read
+  Handle object(H5Oopen(file, path.c_str(), H5P_DEFAULT));
+  if (!object.valid())
+    return;
+
+  note(progress, path, "reading the attributes");
+  std::vector<std::string> attributes;
+  if (!attribute_names(object.get(), attributes))
+    return;
+  for (const std::string& name : attributes) {
+    note(progress, path, "reading attribute '" + name + "'");
+    Handle attr(H5Aopen(object.get(), name.c_str(), H5P_DEFAULT));
+    if (!attr.valid())
+      continue;
+    Handle type(H5Aget_type(attr.get()));
+    Handle space(H5Aget_space(attr.get()));
+    if (!type.valid() || !space.valid())
+      continue;
+    const hssize_t count = H5Sget_simple_extent_npoints(space.get());
+    if (count > 0) {
+      read_values(attr.get(), false, type.get(), space.get(), static_cast<hsize_t>(count));
+    }
+  }
+
+  if (info.type == H5O_TYPE_DATASET) {
+    note(progress, path, "reading the dataset");
+    Handle type(H5Dget_type(object.get()));
+    Handle space(H5Dget_space(object.get()));
+    Handle plist(H5Dget_create_plist(object.get()));
+    if (!type.valid() || !space.valid() || !plist.valid())
+      return;
+    const hssize_t count = H5Sget_simple_extent_npoints(space.get());
+    if (count <= 0)
+      return;
+    // Plain contiguous numbers are copied from the file as they are; what the library decodes
+    // (heap references of strings, chunk indexes, compact storage in the header) is read here.
+    const bool decoded = H5Tdetect_class(type.get(), H5T_STRING) > 0 ||
+                         H5Tdetect_class(type.get(), H5T_VLEN) > 0 ||
+                         H5Pget_layout(plist.get()) != H5D_CONTIGUOUS;
+    // A shape declaring more than the file stores is refused by the parent before reading.
+    const double declared =
+        static_cast<double>(count) * static_cast<double>(H5Tget_size(type.get()));
+    const bool plausible = H5Pget_nfilters(plist.get()) > 0 ||
+                           declared <= static_cast<double>(H5Dget_storage_size(object.get()));
+    if (decoded && plausible) {
+      read_values(object.get(), true, type.get(), space.get(), static_cast<hsize_t>(count));
+    }
+  } else if (info.type == H5O_TYPE_GROUP) {
+    note(progress, path, "reading the group's links");
+    std::vector<std::string> links;
+    if (!link_names(object.get(), links))
+      return;
+    for (const std::string& name : links) {
+      const std::string child = (path == "/" ? "/" : path + "/") + name;
+      H5L_info_t link;
+      if (H5Lget_info(file, child.c_str(), &link, H5P_DEFAULT) < 0 || link.type != H5L_TYPE_HARD) {
+        continue;  // soft and external links are not followed by the readers either
+      }
+      read_object(file, child, seen, progress);
+    }
+  }
+}
+
+// Reads the whole file in a child process; throws DamagedFile if the child crashes or hangs.
+// Returns without a verdict where no child can be made (the reads then run unguarded).
+void read_in_guarded_child(const std::filesystem::path& file) {
+  void* shared = mmap(nullptr, sizeof(GuardProgress), PROT_READ | PROT_WRITE,
+                      MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+  if (shared == MAP_FAILED)
+    return;
+  auto* progress = new (shared) GuardProgress{};
+  note(progress, "/", "opening the file");
+  // The child holds the write end of a pipe until it ends: the parent sees the end at once.
+  int pipe_ends[2];
+  if (pipe2(pipe_ends, O_CLOEXEC) != 0) {
+    munmap(shared, sizeof(GuardProgress));
+    return;
+  }
+  const pid_t pid = fork();
+  if (pid < 0) {
+    close(pipe_ends[0]);
+    close(pipe_ends[1]);
+    munmap(shared, sizeof(GuardProgress));
+    return;
+  }
+  if (pid == 0) {
+    close(pipe_ends[0]);
+    // A crash report (a sanitizer's) is not for the user: the parent words it.
+    const int null = open("/dev/null", O_WRONLY);
+    if (null >= 0)
+      dup2(null, STDERR_FILENO);
+    try {
+      const hid_t id = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+      if (id >= 0) {
+        std::set<haddr_t> seen;
+        read_object(id, "/", seen, progress);
+      }
+    } catch (...) {
+      // Out of memory and the like: not a crash of the library; the parent reads and reports.
+    }
+    // _exit: no atexit handlers, so the parent's open HDF5 files are not flushed from here.
+    _exit(0);
+  }
+  close(pipe_ends[1]);
+  // The child reads metadata and strings: milliseconds for tfmb's files. The limit only stops a
+  // loop; it grows with the file for chunked data read from a slow disk.
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(file, ec);
+  const auto limit = std::chrono::seconds(10 + (ec ? 0 : bytes / 10'000'000));
+  const auto deadline = std::chrono::steady_clock::now() + limit;
+  bool hung = false;
+  for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+        deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) {
+      hung = true;
+      break;
+    }
+    pollfd end{pipe_ends[0], POLLIN, 0};
+    const int ready = poll(&end, 1, static_cast<int>(left.count()));
+    if (ready < 0 && errno == EINTR)
+      continue;
+    if (ready < 0)
+      break;  // cannot watch: wait for the child below
+    if (ready > 0) {
+      char byte;
+      if (read(pipe_ends[0], &byte, 1) <= 0)
+        break;  // end of file: the child has ended
+    }
+  }
+  close(pipe_ends[0]);
+  if (hung)
+    kill(pid, SIGKILL);
+  int status = 0;
+  pid_t done;
+  do {
+    done = waitpid(pid, &status, 0);
+  } while (done < 0 && errno == EINTR);
+  const std::string object = progress->object;
+  const std::string what = progress->what;
+  munmap(shared, sizeof(GuardProgress));
+  if (done != pid)
+    return;  // e.g. SIGCHLD ignored: the child's end is not ours to know
+  const std::string where = file.string() + ": " + object + ": ";
+  if (hung) {
+    throw DamagedFile(where + what + " did not finish in " + std::to_string(limit.count()) +
+                      " s (a loop in damaged HDF5 metadata): damaged file");
+  }
+  if (WIFSIGNALED(status)) {
+    throw DamagedFile(where + what + " crashed the HDF5 library (" + strsignal(WTERMSIG(status)) +
+                      "): damaged file");
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    throw DamagedFile(where + what + " crashed the HDF5 library (exit status " +
+                      std::to_string(WEXITSTATUS(status)) + "): damaged file");
+  }
+}
+
 }  // namespace
 
 bool is_hdf5_file(const std::filesystem::path& file) {
@@ -125,9 +396,13 @@ Reader::Reader(const std::filesystem::path& file) : path_(file) {
   if (H5Fis_hdf5(file.c_str()) <= 0) {
     throw BadInput(file.string() + ": not an HDF5 file (no HDF5 signature)");
   }
+  read_in_guarded_child(file);
   file_id_ = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   if (file_id_ < 0) {
-    throw BadInput(file.string() + ": cannot open as HDF5 (truncated or corrupted file?)");
+    const std::string cause = hdf5_cause();
+    throw DamagedFile(file.string() + ": cannot open as HDF5 (" +
+                      (cause.empty() ? std::string("truncated or corrupted file?") : cause) +
+                      "): damaged file");
   }
 }
 
@@ -143,52 +418,65 @@ void Reader::fail(const std::string& object_path, const std::string& what) const
   throw BadInput(path_.string() + ": " + object_path + ": " + what);
 }
 
+void Reader::fail_hdf5(const std::string& object_path, const std::string& what) const {
+  const std::string cause = hdf5_cause();
+  throw DamagedFile(path_.string() + ": " + object_path + ": " + what +
+                    (cause.empty() ? std::string() : " (" + cause + ")") + ": damaged file");
+}
+
+std::int64_t Reader::object_type(const std::string& object_path) const {
+  H5O_info_t info;
+  if (H5Oget_info_by_name(file_id_, object_path.c_str(), &info, H5P_DEFAULT) < 0) {
+    fail_hdf5(object_path, "cannot read the object header");
+  }
+  return info.type;
+}
+
 bool Reader::exists(const std::string& object_path) const {
   if (object_path == "/") return true;
-  // H5Lexists fails on a missing intermediate group, so walk the path one link at a time.
+  // H5Lexists fails on a missing intermediate group, so walk the path one link at a time. A
+  // failure (rather than "no") is a damaged file, reported as such: taken for absence it became
+  // a list of "missing" objects that hid the cause.
   std::string partial;
   std::size_t start = 1;
   while (start <= object_path.size()) {
     std::size_t end = object_path.find('/', start);
     if (end == std::string::npos) end = object_path.size();
     partial = object_path.substr(0, end);
-    if (H5Lexists(file_id_, partial.c_str(), H5P_DEFAULT) <= 0) return false;
-    if (H5Oexists_by_name(file_id_, partial.c_str(), H5P_DEFAULT) <= 0) return false;
+    const htri_t link = H5Lexists(file_id_, partial.c_str(), H5P_DEFAULT);
+    if (link < 0)
+      fail_hdf5(partial, "cannot read the group's links");
+    if (link == 0)
+      return false;
+    const htri_t object = H5Oexists_by_name(file_id_, partial.c_str(), H5P_DEFAULT);
+    if (object < 0)
+      fail_hdf5(partial, "cannot resolve the link");
+    if (object == 0)
+      return false;
+    // Below a dataset nothing exists (and H5Lexists would fail on the path).
+    if (end < object_path.size() && object_type(partial) != H5O_TYPE_GROUP)
+      return false;
     start = end + 1;
   }
   return true;
 }
 
 bool Reader::is_group(const std::string& object_path) const {
-  if (!exists(object_path)) return false;
-  H5O_info_t info;
-  if (H5Oget_info_by_name(file_id_, object_path.c_str(), &info, H5P_DEFAULT) < 0) return false;
-  return info.type == H5O_TYPE_GROUP;
+  return exists(object_path) && object_type(object_path) == H5O_TYPE_GROUP;
 }
 
 bool Reader::is_dataset(const std::string& object_path) const {
-  if (!exists(object_path)) return false;
-  H5O_info_t info;
-  if (H5Oget_info_by_name(file_id_, object_path.c_str(), &info, H5P_DEFAULT) < 0) return false;
-  return info.type == H5O_TYPE_DATASET;
+  return exists(object_path) && object_type(object_path) == H5O_TYPE_DATASET;
 }
 
 std::vector<std::string> Reader::children(const std::string& group_path) const {
   if (!is_group(group_path)) fail(group_path, "missing group");
   Handle group(H5Gopen2(file_id_, group_path.c_str(), H5P_DEFAULT));
-  if (!group.valid()) fail(group_path, "cannot open group");
-  H5G_info_t info;
-  if (H5Gget_info(group.get(), &info) < 0) fail(group_path, "cannot list group");
+  if (!group.valid())
+    fail_hdf5(group_path, "cannot open group");
   std::vector<std::string> names;
-  for (hsize_t i = 0; i < info.nlinks; ++i) {
-    const ssize_t length = H5Lget_name_by_idx(group.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i,
-                                              nullptr, 0, H5P_DEFAULT);
-    if (length < 0) fail(group_path, "cannot read a link name");
-    std::string name(static_cast<std::size_t>(length), '\0');
-    H5Lget_name_by_idx(group.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(),
-                       name.size() + 1, H5P_DEFAULT);
-    names.push_back(name);
-  }
+  if (!link_names(group.get(), names))
+    fail_hdf5(group_path, "cannot list group");
   std::sort(names.begin(), names.end());
   return names;
 }
@@ -197,15 +485,18 @@ DatasetInfo Reader::info(const std::string& dataset_path) const {
   if (!exists(dataset_path)) fail(dataset_path, "missing dataset");
   if (!is_dataset(dataset_path)) fail(dataset_path, "is a group, expected a dataset");
   Handle dataset(H5Dopen2(file_id_, dataset_path.c_str(), H5P_DEFAULT));
-  if (!dataset.valid()) fail(dataset_path, "cannot open dataset");
+  if (!dataset.valid())
+    fail_hdf5(dataset_path, "cannot open dataset");
   Handle type(H5Dget_type(dataset.get()));
   Handle space(H5Dget_space(dataset.get()));
-  if (!type.valid() || !space.valid()) fail(dataset_path, "cannot read type or shape");
+  if (!type.valid() || !space.valid())
+    fail_hdf5(dataset_path, "cannot read type or shape");
   DatasetInfo result;
   result.dtype = dtype_of(type.get());
   result.dtype_name = dtype_name_of(type.get());
   const int rank = H5Sget_simple_extent_ndims(space.get());
-  if (rank < 0) fail(dataset_path, "cannot read shape");
+  if (rank < 0)
+    fail_hdf5(dataset_path, "cannot read shape");
   std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
   H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
   result.shape.assign(dims.begin(), dims.end());
@@ -222,6 +513,8 @@ std::vector<T> read_numeric(const Reader& reader, hid_t file_id, const std::stri
                           (expected == DType::float64 ? "float64" : "int64"));
   }
   Handle dataset(H5Dopen2(file_id, path.c_str(), H5P_DEFAULT));
+  if (!dataset.valid())
+    reader.fail_hdf5(path, "cannot open dataset");
   // A dataset without filters stores every value it declares; one that declares more than the
   // file holds is corrupted (a flipped byte in its shape: 2^40 rows made every reader try to
   // allocate 16 TB and die out of memory) and is refused before anything is allocated.
@@ -241,7 +534,7 @@ std::vector<T> read_numeric(const Reader& reader, hid_t file_id, const std::stri
   std::vector<T> values(element_count(info.shape));
   if (!values.empty() &&
       H5Dread(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0) {
-    reader.fail(path, "cannot read data (truncated or corrupted file?)");
+    reader.fail_hdf5(path, "cannot read data");
   }
   if (shape) *shape = info.shape;
   return values;
@@ -352,6 +645,8 @@ std::vector<std::string> Reader::read_strings(const std::string& dataset_path) c
   }
   if (info.shape.size() > 1) fail(dataset_path, "wrong shape " + shape_text(info.shape) + ", expected (n,)");
   Handle dataset(H5Dopen2(file_id_, dataset_path.c_str(), H5P_DEFAULT));
+  if (!dataset.valid())
+    fail_hdf5(dataset_path, "cannot open dataset");
   Handle file_type(H5Dget_type(dataset.get()));
   if (H5Tis_variable_str(file_type.get()) <= 0) fail(dataset_path, "expected variable-length strings");
   Handle memory_type(string_type());
@@ -359,7 +654,7 @@ std::vector<std::string> Reader::read_strings(const std::string& dataset_path) c
   std::vector<char*> raw(n, nullptr);
   if (n > 0 && H5Dread(dataset.get(), memory_type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT,
                        raw.data()) < 0) {
-    fail(dataset_path, "cannot read strings");
+    fail_hdf5(dataset_path, "cannot read strings");
   }
   std::vector<std::string> result;
   for (char* s : raw) result.emplace_back(s ? s : "");
@@ -372,25 +667,20 @@ std::vector<std::string> Reader::read_strings(const std::string& dataset_path) c
 
 bool Reader::has_attr(const std::string& object_path, const std::string& name) const {
   if (!exists(object_path)) return false;
-  return H5Aexists_by_name(file_id_, object_path.c_str(), name.c_str(), H5P_DEFAULT) > 0;
+  const htri_t found = H5Aexists_by_name(file_id_, object_path.c_str(), name.c_str(), H5P_DEFAULT);
+  if (found < 0)
+    fail_hdf5(object_path, "cannot read the attributes");
+  return found > 0;
 }
 
 std::vector<std::string> Reader::attr_names(const std::string& object_path) const {
   if (!exists(object_path)) fail(object_path, "missing object");
-  H5O_info_t info;
-  if (H5Oget_info_by_name(file_id_, object_path.c_str(), &info, H5P_DEFAULT) < 0) {
-    fail(object_path, "cannot read object info");
-  }
+  Handle object(H5Oopen(file_id_, object_path.c_str(), H5P_DEFAULT));
+  if (!object.valid())
+    fail_hdf5(object_path, "cannot open object");
   std::vector<std::string> names;
-  for (hsize_t i = 0; i < info.num_attrs; ++i) {
-    const ssize_t length = H5Aget_name_by_idx(file_id_, object_path.c_str(), H5_INDEX_NAME,
-                                              H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT);
-    if (length < 0) fail(object_path, "cannot read an attribute name");
-    std::string name(static_cast<std::size_t>(length), '\0');
-    H5Aget_name_by_idx(file_id_, object_path.c_str(), H5_INDEX_NAME, H5_ITER_INC, i, name.data(),
-                       name.size() + 1, H5P_DEFAULT);
-    names.push_back(name);
-  }
+  if (!attribute_names(object.get(), names))
+    fail_hdf5(object_path, "cannot list the attributes");
   std::sort(names.begin(), names.end());
   return names;
 }
@@ -400,7 +690,8 @@ Handle open_attr(const Reader& reader, hid_t file_id, const std::string& object_
                  const std::string& name) {
   if (!reader.has_attr(object_path, name)) reader.fail(object_path, "missing attribute '" + name + "'");
   Handle attr(H5Aopen_by_name(file_id, object_path.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT));
-  if (!attr.valid()) reader.fail(object_path, "cannot open attribute '" + name + "'");
+  if (!attr.valid())
+    reader.fail_hdf5(object_path, "cannot open attribute '" + name + "'");
   return attr;
 }
 
@@ -439,7 +730,7 @@ std::string Reader::attr_string(const std::string& object_path, const std::strin
     Handle memory_type(string_type());
     char* raw = nullptr;
     if (H5Aread(attr.get(), memory_type.get(), &raw) < 0) {
-      fail(object_path, "cannot read attribute '" + name + "'");
+      fail_hdf5(object_path, "cannot read attribute '" + name + "'");
     }
     std::string value = raw ? raw : "";
     Handle space(H5Aget_space(attr.get()));
@@ -452,7 +743,7 @@ std::string Reader::attr_string(const std::string& object_path, const std::strin
   Handle memory_type(H5Tcopy(H5T_C_S1));
   H5Tset_size(memory_type.get(), size);
   if (H5Aread(attr.get(), memory_type.get(), value.data()) < 0) {
-    fail(object_path, "cannot read attribute '" + name + "'");
+    fail_hdf5(object_path, "cannot read attribute '" + name + "'");
   }
   value.resize(std::min(value.size(), value.find('\0')));
   return value;
@@ -469,7 +760,7 @@ double Reader::attr_f64(const std::string& object_path, const std::string& name)
   if (attr_count(attr.get()) != 1) fail(object_path, "attribute '" + name + "' is not a scalar");
   double value = 0;
   if (H5Aread(attr.get(), H5T_NATIVE_DOUBLE, &value) < 0) {
-    fail(object_path, "cannot read attribute '" + name + "'");
+    fail_hdf5(object_path, "cannot read attribute '" + name + "'");
   }
   if (!std::isfinite(value)) {
     std::ostringstream what;
@@ -489,7 +780,7 @@ std::int64_t Reader::attr_i64(const std::string& object_path, const std::string&
   if (attr_count(attr.get()) != 1) fail(object_path, "attribute '" + name + "' is not a scalar");
   std::int64_t value = 0;
   if (H5Aread(attr.get(), H5T_NATIVE_INT64, &value) < 0) {
-    fail(object_path, "cannot read attribute '" + name + "'");
+    fail_hdf5(object_path, "cannot read attribute '" + name + "'");
   }
   return value;
 }
@@ -505,7 +796,7 @@ std::vector<double> Reader::attr_f64_vector(const std::string& object_path,
   }
   std::vector<double> values(attr_count(attr.get()));
   if (H5Aread(attr.get(), H5T_NATIVE_DOUBLE, values.data()) < 0) {
-    fail(object_path, "cannot read attribute '" + name + "'");
+    fail_hdf5(object_path, "cannot read attribute '" + name + "'");
   }
   for (double v : values) {
     if (!std::isfinite(v)) fail(object_path, "attribute '" + name + "' has a non-finite value");
@@ -516,6 +807,64 @@ std::vector<double> Reader::attr_f64_vector(const std::string& object_path,
 // ---------------------------------------------------------------------------------------------
 // Writer
 
+struct FileImage {
+  void* data = nullptr;      // HDF5's buffer, handed over when the file is closed
+  std::size_t capacity = 0;  // its size in bytes (the file ends before, see image_size)
+};
+
+namespace {
+
+// The core driver keeps the file in one buffer that it grows with image_realloc and releases
+// with image_free when the file is closed: these callbacks keep it at that point instead.
+void* image_malloc(std::size_t size, H5FD_file_image_op_t, void* udata) {
+  void* data = std::malloc(size);
+  if (data)
+    static_cast<FileImage*>(udata)->capacity = size;
+  return data;
+}
+void* image_memcpy(void* to, const void* from, std::size_t size, H5FD_file_image_op_t, void*) {
+  return std::memcpy(to, from, size);
+}
+void* image_realloc(void* data, std::size_t size, H5FD_file_image_op_t, void* udata) {
+  void* grown = std::realloc(data, size);
+  if (grown)
+    static_cast<FileImage*>(udata)->capacity = size;
+  return grown;
+}
+herr_t image_free(void* data, H5FD_file_image_op_t operation, void* udata) {
+  if (operation == H5FD_FILE_IMAGE_OP_FILE_CLOSE) {
+    static_cast<FileImage*>(udata)->data = data;
+  } else {
+    std::free(data);
+  }
+  return 0;
+}
+// One FileImage per Writer: property list copies share it.
+void* image_udata_copy(void* udata) {
+  return udata;
+}
+herr_t image_udata_free(void*) {
+  return 0;
+}
+
+// The length of a closed file's image: the end-of-file address of its superblock (version 2 or 3,
+// what the 1.10 format bounds give: signature 8 bytes, version, offset and length sizes, flags,
+// then base, extension and end-of-file addresses of 8 bytes). 0 if the image is not one.
+std::size_t image_size(const FileImage& image) {
+  const auto* bytes = static_cast<const unsigned char*>(image.data);
+  static const unsigned char signature[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
+  if (!bytes || image.capacity < 48 || std::memcmp(bytes, signature, 8) != 0 ||
+      (bytes[8] != 2 && bytes[8] != 3) || bytes[9] != 8) {
+    return 0;
+  }
+  std::uint64_t end = 0;
+  for (int i = 7; i >= 0; --i)
+    end = (end << 8) | bytes[28 + i];  // little-endian
+  return end <= image.capacity ? static_cast<std::size_t>(end) : 0;
+}
+
+}  // namespace
+
 Writer::Writer(const std::filesystem::path& file) : path_(file) {
   silence_hdf5_errors();
   tmp_path_ = file;
@@ -525,17 +874,48 @@ Writer::Writer(const std::filesystem::path& file) : path_(file) {
   if (file.has_parent_path() && !file.parent_path().empty()) {
     std::filesystem::create_directories(file.parent_path(), ec);
   }
+  tmp_fd_ = ::open(tmp_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (tmp_fd_ < 0) {
+    throw InternalError(tmp_path_.string() + ": cannot create file (" + std::strerror(errno) + ")");
+  }
   Handle fcpl(H5Pcreate(H5P_FILE_CREATE));
   // Byte-reproducible output: the root group carries no modification times either.
   H5Pset_obj_track_times(fcpl.get(), 0);
-  file_id_ = H5Fcreate(tmp_path_.c_str(), H5F_ACC_TRUNC, fcpl.get(), H5P_DEFAULT);
+  // The HDF5 1.10 file format checksums its metadata (superblock, object headers, B-trees,
+  // heaps of link names), so a damaged file fails to open or read with a checksum error that
+  // the Reader reports, where the 1.8-compatible default format let the library follow a
+  // flipped address or size and crash (issue 23). The upper bound is pinned too, so that a newer
+  // HDF5 still writes files that 1.10 readers (Debian's h5py) open.
+  Handle fapl(H5Pcreate(H5P_FILE_ACCESS));
+  // In memory (the core driver without a backing store, growing by 1 MiB): see the class comment.
+  image_ = std::make_unique<FileImage>();
+  H5FD_file_image_callbacks_t callbacks = {image_malloc, image_memcpy,     image_realloc,
+                                           image_free,   image_udata_copy, image_udata_free,
+                                           image_.get()};
+  if (H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V110, H5F_LIBVER_V110) < 0 ||
+      H5Pset_fapl_core(fapl.get(), std::size_t{1} << 20, false) < 0 ||
+      H5Pset_file_image_callbacks(fapl.get(), &callbacks) < 0) {
+    ::close(tmp_fd_);
+    std::filesystem::remove(tmp_path_, ec);
+    throw InternalError(tmp_path_.string() + ": cannot set up the HDF5 1.10 file format in memory");
+  }
+  file_id_ = H5Fcreate(tmp_path_.c_str(), H5F_ACC_TRUNC, fcpl.get(), fapl.get());
   if (file_id_ < 0) {
-    throw InternalError(tmp_path_.string() + ": cannot create file (directory writable?)");
+    const std::string cause = hdf5_cause();
+    ::close(tmp_fd_);
+    std::filesystem::remove(tmp_path_, ec);
+    throw InternalError(tmp_path_.string() + ": cannot create the HDF5 file in memory (" + cause +
+                        ")");
   }
 }
 
 Writer::~Writer() {
+  // In memory: closing cannot fail on a disk, whatever went wrong before.
   if (file_id_ >= 0) H5Fclose(file_id_);
+  if (image_)
+    std::free(image_->data);
+  if (tmp_fd_ >= 0)
+    ::close(tmp_fd_);
   if (!committed_) {
     std::error_code ec;
     std::filesystem::remove(tmp_path_, ec);
@@ -581,7 +961,7 @@ void Writer::write_raw(const std::string& dataset_path, bool is_float, const voi
   if (!dataset.valid()) fail(dataset_path, "cannot create dataset (exists already?)");
   if (element_count(shape) > 0 &&
       H5Dwrite(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0) {
-    fail(dataset_path, "cannot write dataset (disk full?)");
+    fail(dataset_path, "cannot write dataset (out of memory?)");
   }
   dataset.reset();
   set_attr(dataset_path, "units", units);
@@ -706,14 +1086,42 @@ void Writer::set_attr(const std::string& object_path, const std::string& name,
 
 void Writer::commit() {
   if (committed_) return;
-  if (H5Fflush(file_id_, H5F_SCOPE_GLOBAL) < 0 || H5Fclose(file_id_) < 0) {
-    file_id_ = -1;
-    fail("/", "cannot close file (disk full?)");
-  }
+  if (file_id_ < 0)
+    fail("/", "file already closed");
+  const herr_t closed = H5Fclose(file_id_);
+  const std::string cause = closed < 0 ? hdf5_cause() : std::string();
   file_id_ = -1;
+  if (closed < 0)
+    fail("/", "cannot close the HDF5 file (" + cause + ")");
+  const std::size_t size = image_size(*image_);
+  if (size == 0)
+    fail("/", "HDF5 left no file image to write");
+  const auto* bytes = static_cast<const char*>(image_->data);
+  for (std::size_t written = 0; written < size;) {
+    const ssize_t n = ::write(tmp_fd_, bytes + written, size - written);
+    if (n < 0 && errno == EINTR)
+      continue;
+    if (n <= 0) {
+      throw InternalError(path_.string() + ": cannot write " + std::to_string(size) + " bytes to " +
+                          tmp_path_.string() + " (" +
+                          (n < 0 ? std::strerror(errno) : "nothing written") + ")");
+    }
+    written += static_cast<std::size_t>(n);
+  }
+  std::free(image_->data);
+  image_->data = nullptr;
+  const int fd = tmp_fd_;
+  tmp_fd_ = -1;
+  if (::close(fd) != 0) {  // where a network file system reports what did not fit
+    throw InternalError(path_.string() + ": cannot write " + tmp_path_.string() + " (" +
+                        std::strerror(errno) + ")");
+  }
   std::error_code ec;
   std::filesystem::rename(tmp_path_, path_, ec);
-  if (ec) throw InternalError(path_.string() + ": cannot rename from " + tmp_path_.string() + ": " + ec.message());
+  if (ec) {
+    throw InternalError(path_.string() + ": cannot rename from " + tmp_path_.string() + ": " +
+                        ec.message());
+  }
   committed_ = true;
 }
 

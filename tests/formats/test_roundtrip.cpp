@@ -126,5 +126,43 @@ TEST(FormatsMesh, MeshioReadsEverySidecar) {
   }
 }
 
+// A file name with XML's special characters (a case directory named "R&D <draft>") must still
+// give a well-formed sidecar whose data references name the file exactly: unescaped, `&` and `<`
+// made ParaView and meshio refuse it. The field name carries them too, as an external writer may.
+TEST(FormatsMesh, SidecarOfAFileNamedWithXmlSpecialCharactersParses) {
+  const auto dir = test::scratch_dir();
+  const std::string name = "R&D <draft> \"v1\" 'b'";
+  const auto file = dir / (name + ".h5");
+  {
+    h5::Writer writer(file);
+    write_header(writer, "flowmesh", {"test", "planar", 1.0});
+    write_mesh(writer, two_cell_mesh());
+    writer.write("/fields/point/p<&>", std::vector<double>{1, 2, 3, 4, 5}, "Pa");
+    writer.commit();
+  }
+  const auto sidecar = write_xdmf_sidecar(file);
+  // The path goes through the environment, so that no shell quoting is involved.
+  ASSERT_EQ(setenv("TFMB_TEST_SIDECAR", sidecar.c_str(), 1), 0);
+  ASSERT_EQ(setenv("TFMB_TEST_DATA_FILE", file.filename().c_str(), 1), 0);
+  const std::string parse =
+      "/usr/bin/python3 -c \"import os, sys, xml.etree.ElementTree as ET\n"
+      "root = ET.parse(os.environ['TFMB_TEST_SIDECAR']).getroot()\n"
+      "data = os.environ['TFMB_TEST_DATA_FILE']\n"
+      "items = [e.text for e in root.iter('DataItem')]\n"
+      "names = [e.get('Name') for e in root.iter('Attribute')]\n"
+      "grid = next(root.iter('Grid')).get('Name')\n"
+      "ok = len(items) == 3 and all(t.startswith(data + ':/') for t in items)\n"
+      "ok = ok and names == ['p<&>'] and grid == data[:-3]\n"
+      "sys.exit(0 if ok else 1)\"";
+  EXPECT_EQ(std::system(parse.c_str()), 0) << test::read_bytes(sidecar);
+  if (std::system("/usr/bin/python3 -c 'import meshio' 2>/dev/null") == 0) {
+    const std::string read =
+        "/usr/bin/python3 -c \"import meshio, os, sys\n"
+        "m = meshio.read(os.environ['TFMB_TEST_SIDECAR'])\n"
+        "sys.exit(0 if len(m.points) == 5 else 1)\"";
+    EXPECT_EQ(std::system(read.c_str()), 0) << "meshio";
+  }
+}
+
 }  // namespace
 }  // namespace tfmb::formats

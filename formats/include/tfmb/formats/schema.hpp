@@ -75,7 +75,8 @@ struct Problem {
 // Validates an open file against a schema. With stop_at_first, returns after the first problem
 // (what readers use); tfmb-check collects them all. Checks: format and major version, required
 // attributes and their types/values, required datasets, dtype, shape and symbol consistency,
-// units attribute, finite floats, index ranges.
+// units attribute, finite floats, index ranges. A file HDF5 cannot read throws h5::DamagedFile
+// (a BadInput) at the first damage instead: what follows it would be its consequences.
 std::vector<Problem> validate(const h5::Reader& file, const Schema& schema,
                               bool stop_at_first = false);
 

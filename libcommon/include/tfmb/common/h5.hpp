@@ -5,16 +5,21 @@
 // whose message is one line: "<file>: <path inside it>: <what is wrong>".
 //
 // Reading checks dtype (float64 / int64 exactly, any byte order), rank and shape, finiteness of
-// every float and, on request, index ranges. Writing is atomic (<file>.tmp, close, rename) and
-// byte-reproducible (object modification times are not stored).
+// every float and, on request, index ranges; an HDF5 call that fails on the file (a checksum
+// mismatch, a truncated file) is reported as a damaged file, never taken for a missing object.
+// Writing is atomic (<file>.tmp, close, rename), byte-reproducible (object modification times are
+// not stored) and in the HDF5 1.10 file format, whose metadata is checksummed.
 #pragma once
 
 #include <Eigen/Core>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "tfmb/common/errors.hpp"
 
 namespace tfmb::h5 {
 
@@ -30,13 +35,23 @@ struct DatasetInfo {
   std::vector<std::size_t> shape;   // empty for a scalar
 };
 
+// A file HDF5 cannot read as it stands (a checksum mismatch, an address past its end, a heap
+// that crashes the library): everything read after the first damage would be its consequence,
+// so a validation stops there and reports this one line.
+class DamagedFile : public BadInput {
+ public:
+  using BadInput::BadInput;
+};
+
 // Shape expectation for one dimension: std::nullopt accepts any extent.
 using Extent = std::optional<std::size_t>;
 
 // Read-only access to one HDF5 file.
 class Reader {
  public:
-  // Throws BadInput if the file does not exist or is not an HDF5 file.
+  // Throws BadInput if the file does not exist or is not an HDF5 file, DamagedFile if HDF5
+  // cannot open it or if reading it once in a child process crashes or hangs the library (see
+  // h5.cpp: parts of the file format carry no checksum and the library trusts them).
   explicit Reader(const std::filesystem::path& file);
   ~Reader();
   Reader(const Reader&) = delete;
@@ -84,17 +99,31 @@ class Reader {
 
   // Throws BadInput("<file>: <object_path>: <what>").
   [[noreturn]] void fail(const std::string& object_path, const std::string& what) const;
+  // Throws DamagedFile after an HDF5 call on the file failed, with HDF5's innermost reason (a
+  // checksum mismatch, an address past the end of the file). Call it right after the failing
+  // call: any other HDF5 call clears the reason.
+  [[noreturn]] void fail_hdf5(const std::string& object_path, const std::string& what) const;
 
  private:
+  // H5O_TYPE_GROUP, H5O_TYPE_DATASET, ... of an existing object; a damaged header throws.
+  std::int64_t object_type(const std::string& object_path) const;
+
   std::filesystem::path path_;
   std::int64_t file_id_ = -1;
 };
 
-// Writes one HDF5 file atomically: everything goes to "<file>.tmp", commit() closes it and
-// renames it over <file>. A Writer destroyed without commit() removes the temporary file, so a
-// crash or an exception never leaves a partial file that make would take as up to date.
+// The bytes of a file a Writer builds in memory (h5.cpp).
+struct FileImage;
+
+// Writes one HDF5 file atomically: HDF5 builds it in memory, commit() closes it there, writes
+// its bytes to "<file>.tmp" and renames that over <file>. A Writer destroyed without commit()
+// removes the temporary file, so a crash or an exception never leaves a partial file that make
+// would take as up to date. HDF5 never writes to the disk itself: a write it failed (a full disk)
+// left its state broken, and its clean-up at exit then crashed; the Writer's own writes fail
+// with an InternalError (exit 4) naming the file and the system's reason.
 class Writer {
  public:
+  // Creates <file>.tmp at once, so that an unwritable directory fails before any data is written.
   explicit Writer(const std::filesystem::path& file);
   ~Writer();
   Writer(const Writer&) = delete;
@@ -143,7 +172,8 @@ class Writer {
   void set_attr(const std::string& object_path, const std::string& name,
                 const std::vector<double>& value);
 
-  // Closes the file and renames it into place. Throws InternalError on failure.
+  // Closes the file, writes it to <file>.tmp and renames that into place. Throws InternalError
+  // on failure (the temporary file is removed).
   void commit();
 
  private:
@@ -155,6 +185,8 @@ class Writer {
 
   std::filesystem::path path_;
   std::filesystem::path tmp_path_;
+  std::unique_ptr<FileImage> image_;
+  int tmp_fd_ = -1;
   std::int64_t file_id_ = -1;
   bool committed_ = false;
 };
