@@ -504,6 +504,29 @@ DatasetInfo Reader::info(const std::string& dataset_path) const {
 }
 
 namespace {
+// A dataset without filters stores every value it declares; one that declares more than the
+// file holds is corrupted (a flipped byte in its shape: 2^40 rows made every reader try to
+// allocate 16 TB and die out of memory, exit 4) and is refused before anything is allocated.
+// (Compressed datasets may store less: tfmb writes none.) A variable-length string is stored as
+// a 16-byte reference into the global heap: `element_bytes` 8 is a safe lower bound for it.
+void check_stored_size(const Reader& reader, hid_t dataset, const std::string& path,
+                       const std::vector<std::size_t>& shape, std::size_t element_bytes) {
+  double declared = static_cast<double>(element_bytes);
+  for (std::size_t d : shape)
+    declared *= static_cast<double>(d);
+  if (declared <= 0.0)
+    return;
+  Handle plist(H5Dget_create_plist(dataset));
+  const hsize_t stored = H5Dget_storage_size(dataset);
+  if (plist.valid() && H5Pget_nfilters(plist.get()) == 0 &&
+      declared > static_cast<double>(stored)) {
+    std::ostringstream what;
+    what << "shape " << shape_text(shape) << " declares " << declared
+         << " bytes but the file stores " << stored << " (corrupted or truncated file?)";
+    reader.fail(path, what.str());
+  }
+}
+
 template <typename T>
 std::vector<T> read_numeric(const Reader& reader, hid_t file_id, const std::string& path,
                             DType expected, hid_t memory_type, std::vector<std::size_t>* shape) {
@@ -515,22 +538,7 @@ std::vector<T> read_numeric(const Reader& reader, hid_t file_id, const std::stri
   Handle dataset(H5Dopen2(file_id, path.c_str(), H5P_DEFAULT));
   if (!dataset.valid())
     reader.fail_hdf5(path, "cannot open dataset");
-  // A dataset without filters stores every value it declares; one that declares more than the
-  // file holds is corrupted (a flipped byte in its shape: 2^40 rows made every reader try to
-  // allocate 16 TB and die out of memory) and is refused before anything is allocated.
-  // (Compressed datasets may store less: tfmb writes none.)
-  double declared = sizeof(T);
-  for (std::size_t d : info.shape) declared *= static_cast<double>(d);
-  if (declared > 0.0) {
-    Handle plist(H5Dget_create_plist(dataset.get()));
-    const hsize_t stored = H5Dget_storage_size(dataset.get());
-    if (plist.valid() && H5Pget_nfilters(plist.get()) == 0 && declared > static_cast<double>(stored)) {
-      std::ostringstream what;
-      what << "shape " << shape_text(info.shape) << " declares " << declared
-           << " bytes but the file stores " << stored << " (corrupted or truncated file?)";
-      reader.fail(path, what.str());
-    }
-  }
+  check_stored_size(reader, dataset.get(), path, info.shape, sizeof(T));
   std::vector<T> values(element_count(info.shape));
   if (!values.empty() &&
       H5Dread(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0) {
@@ -649,6 +657,7 @@ std::vector<std::string> Reader::read_strings(const std::string& dataset_path) c
     fail_hdf5(dataset_path, "cannot open dataset");
   Handle file_type(H5Dget_type(dataset.get()));
   if (H5Tis_variable_str(file_type.get()) <= 0) fail(dataset_path, "expected variable-length strings");
+  check_stored_size(*this, dataset.get(), dataset_path, info.shape, 8);
   Handle memory_type(string_type());
   const std::size_t n = element_count(info.shape);
   std::vector<char*> raw(n, nullptr);
