@@ -816,6 +816,19 @@ std::vector<double> Reader::attr_f64_vector(const std::string& object_path,
 // ---------------------------------------------------------------------------------------------
 // Writer
 
+namespace {
+// Settings of every object the Writer creates (the root group through the file's creation list):
+// no modification times, so that two runs give identical bytes; and attributes kept in the
+// object header whatever their number. HDF5 moves more than 8 into a heap of their own, which
+// the 1.10 format allows, and HDF5 1.10.8 crashes copying an object whose heap holds strings
+// (H5Ocopy, h5py's Group.copy: /convergence of a flow file has 20 attributes); in the header,
+// they are under its checksum too.
+void set_object_creation(hid_t plist) {
+  H5Pset_obj_track_times(plist, 0);
+  H5Pset_attr_phase_change(plist, 65535, 0);
+}
+}  // namespace
+
 struct FileImage {
   void* data = nullptr;      // HDF5's buffer, handed over when the file is closed
   std::size_t capacity = 0;  // its size in bytes (the file ends before, see image_size)
@@ -888,8 +901,7 @@ Writer::Writer(const std::filesystem::path& file) : path_(file) {
     throw InternalError(tmp_path_.string() + ": cannot create file (" + std::strerror(errno) + ")");
   }
   Handle fcpl(H5Pcreate(H5P_FILE_CREATE));
-  // Byte-reproducible output: the root group carries no modification times either.
-  H5Pset_obj_track_times(fcpl.get(), 0);
+  set_object_creation(fcpl.get());
   // The HDF5 1.10 file format checksums its metadata (superblock, object headers, B-trees,
   // heaps of link names), so a damaged file fails to open or read with a checksum error that
   // the Reader reports, where the 1.8-compatible default format let the library follow a
@@ -946,7 +958,7 @@ void Writer::ensure_parents(const std::string& object_path) {
     const std::string partial = object_path.substr(0, pos);
     if (H5Lexists(file_id_, partial.c_str(), H5P_DEFAULT) <= 0) {
       Handle gcpl(H5Pcreate(H5P_GROUP_CREATE));
-      H5Pset_obj_track_times(gcpl.get(), 0);
+      set_object_creation(gcpl.get());
       Handle group(H5Gcreate2(file_id_, partial.c_str(), H5P_DEFAULT, gcpl.get(), H5P_DEFAULT));
       if (!group.valid()) fail(partial, "cannot create group");
     }
@@ -962,7 +974,7 @@ void Writer::write_raw(const std::string& dataset_path, bool is_float, const voi
   std::vector<hsize_t> dims(shape.begin(), shape.end());
   Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr));
   Handle dcpl(H5Pcreate(H5P_DATASET_CREATE));
-  H5Pset_obj_track_times(dcpl.get(), 0);
+  set_object_creation(dcpl.get());
   const hid_t file_type = is_float ? H5T_IEEE_F64LE : H5T_STD_I64LE;
   const hid_t memory_type = is_float ? H5T_NATIVE_DOUBLE : H5T_NATIVE_INT64;
   Handle dataset(H5Dcreate2(file_id_, dataset_path.c_str(), file_type, space.get(), H5P_DEFAULT,
@@ -1023,7 +1035,7 @@ void Writer::write_strings(const std::string& dataset_path, const std::vector<st
   Handle space(H5Screate_simple(1, &n, nullptr));
   Handle type(string_type());
   Handle dcpl(H5Pcreate(H5P_DATASET_CREATE));
-  H5Pset_obj_track_times(dcpl.get(), 0);
+  set_object_creation(dcpl.get());
   Handle dataset(H5Dcreate2(file_id_, dataset_path.c_str(), type.get(), space.get(), H5P_DEFAULT,
                             dcpl.get(), H5P_DEFAULT));
   if (!dataset.valid()) fail(dataset_path, "cannot create dataset (exists already?)");
