@@ -504,6 +504,29 @@ DatasetInfo Reader::info(const std::string& dataset_path) const {
 }
 
 namespace {
+// A dataset without filters stores every value it declares; one that declares more than the
+// file holds is corrupted (a flipped byte in its shape: 2^40 rows made every reader try to
+// allocate 16 TB and die out of memory, exit 4) and is refused before anything is allocated.
+// (Compressed datasets may store less: tfmb writes none.) A variable-length string is stored as
+// a 16-byte reference into the global heap: `element_bytes` 8 is a safe lower bound for it.
+void check_stored_size(const Reader& reader, hid_t dataset, const std::string& path,
+                       const std::vector<std::size_t>& shape, std::size_t element_bytes) {
+  double declared = static_cast<double>(element_bytes);
+  for (std::size_t d : shape)
+    declared *= static_cast<double>(d);
+  if (declared <= 0.0)
+    return;
+  Handle plist(H5Dget_create_plist(dataset));
+  const hsize_t stored = H5Dget_storage_size(dataset);
+  if (plist.valid() && H5Pget_nfilters(plist.get()) == 0 &&
+      declared > static_cast<double>(stored)) {
+    std::ostringstream what;
+    what << "shape " << shape_text(shape) << " declares " << declared
+         << " bytes but the file stores " << stored << " (corrupted or truncated file?)";
+    reader.fail(path, what.str());
+  }
+}
+
 template <typename T>
 std::vector<T> read_numeric(const Reader& reader, hid_t file_id, const std::string& path,
                             DType expected, hid_t memory_type, std::vector<std::size_t>* shape) {
@@ -515,22 +538,7 @@ std::vector<T> read_numeric(const Reader& reader, hid_t file_id, const std::stri
   Handle dataset(H5Dopen2(file_id, path.c_str(), H5P_DEFAULT));
   if (!dataset.valid())
     reader.fail_hdf5(path, "cannot open dataset");
-  // A dataset without filters stores every value it declares; one that declares more than the
-  // file holds is corrupted (a flipped byte in its shape: 2^40 rows made every reader try to
-  // allocate 16 TB and die out of memory) and is refused before anything is allocated.
-  // (Compressed datasets may store less: tfmb writes none.)
-  double declared = sizeof(T);
-  for (std::size_t d : info.shape) declared *= static_cast<double>(d);
-  if (declared > 0.0) {
-    Handle plist(H5Dget_create_plist(dataset.get()));
-    const hsize_t stored = H5Dget_storage_size(dataset.get());
-    if (plist.valid() && H5Pget_nfilters(plist.get()) == 0 && declared > static_cast<double>(stored)) {
-      std::ostringstream what;
-      what << "shape " << shape_text(info.shape) << " declares " << declared
-           << " bytes but the file stores " << stored << " (corrupted or truncated file?)";
-      reader.fail(path, what.str());
-    }
-  }
+  check_stored_size(reader, dataset.get(), path, info.shape, sizeof(T));
   std::vector<T> values(element_count(info.shape));
   if (!values.empty() &&
       H5Dread(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0) {
@@ -649,6 +657,7 @@ std::vector<std::string> Reader::read_strings(const std::string& dataset_path) c
     fail_hdf5(dataset_path, "cannot open dataset");
   Handle file_type(H5Dget_type(dataset.get()));
   if (H5Tis_variable_str(file_type.get()) <= 0) fail(dataset_path, "expected variable-length strings");
+  check_stored_size(*this, dataset.get(), dataset_path, info.shape, 8);
   Handle memory_type(string_type());
   const std::size_t n = element_count(info.shape);
   std::vector<char*> raw(n, nullptr);
@@ -807,6 +816,19 @@ std::vector<double> Reader::attr_f64_vector(const std::string& object_path,
 // ---------------------------------------------------------------------------------------------
 // Writer
 
+namespace {
+// Settings of every object the Writer creates (the root group through the file's creation list):
+// no modification times, so that two runs give identical bytes; and attributes kept in the
+// object header whatever their number. HDF5 moves more than 8 into a heap of their own, which
+// the 1.10 format allows, and HDF5 1.10.8 crashes copying an object whose heap holds strings
+// (H5Ocopy, h5py's Group.copy: /convergence of a flow file has 20 attributes); in the header,
+// they are under its checksum too.
+void set_object_creation(hid_t plist) {
+  H5Pset_obj_track_times(plist, 0);
+  H5Pset_attr_phase_change(plist, 65535, 0);
+}
+}  // namespace
+
 struct FileImage {
   void* data = nullptr;      // HDF5's buffer, handed over when the file is closed
   std::size_t capacity = 0;  // its size in bytes (the file ends before, see image_size)
@@ -879,8 +901,7 @@ Writer::Writer(const std::filesystem::path& file) : path_(file) {
     throw InternalError(tmp_path_.string() + ": cannot create file (" + std::strerror(errno) + ")");
   }
   Handle fcpl(H5Pcreate(H5P_FILE_CREATE));
-  // Byte-reproducible output: the root group carries no modification times either.
-  H5Pset_obj_track_times(fcpl.get(), 0);
+  set_object_creation(fcpl.get());
   // The HDF5 1.10 file format checksums its metadata (superblock, object headers, B-trees,
   // heaps of link names), so a damaged file fails to open or read with a checksum error that
   // the Reader reports, where the 1.8-compatible default format let the library follow a
@@ -937,7 +958,7 @@ void Writer::ensure_parents(const std::string& object_path) {
     const std::string partial = object_path.substr(0, pos);
     if (H5Lexists(file_id_, partial.c_str(), H5P_DEFAULT) <= 0) {
       Handle gcpl(H5Pcreate(H5P_GROUP_CREATE));
-      H5Pset_obj_track_times(gcpl.get(), 0);
+      set_object_creation(gcpl.get());
       Handle group(H5Gcreate2(file_id_, partial.c_str(), H5P_DEFAULT, gcpl.get(), H5P_DEFAULT));
       if (!group.valid()) fail(partial, "cannot create group");
     }
@@ -953,7 +974,7 @@ void Writer::write_raw(const std::string& dataset_path, bool is_float, const voi
   std::vector<hsize_t> dims(shape.begin(), shape.end());
   Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr));
   Handle dcpl(H5Pcreate(H5P_DATASET_CREATE));
-  H5Pset_obj_track_times(dcpl.get(), 0);
+  set_object_creation(dcpl.get());
   const hid_t file_type = is_float ? H5T_IEEE_F64LE : H5T_STD_I64LE;
   const hid_t memory_type = is_float ? H5T_NATIVE_DOUBLE : H5T_NATIVE_INT64;
   Handle dataset(H5Dcreate2(file_id_, dataset_path.c_str(), file_type, space.get(), H5P_DEFAULT,
@@ -1014,7 +1035,7 @@ void Writer::write_strings(const std::string& dataset_path, const std::vector<st
   Handle space(H5Screate_simple(1, &n, nullptr));
   Handle type(string_type());
   Handle dcpl(H5Pcreate(H5P_DATASET_CREATE));
-  H5Pset_obj_track_times(dcpl.get(), 0);
+  set_object_creation(dcpl.get());
   Handle dataset(H5Dcreate2(file_id_, dataset_path.c_str(), type.get(), space.get(), H5P_DEFAULT,
                             dcpl.get(), H5P_DEFAULT));
   if (!dataset.valid()) fail(dataset_path, "cannot create dataset (exists already?)");
