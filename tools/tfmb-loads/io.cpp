@@ -117,8 +117,9 @@ FlowTraces read_flow_traces(const std::filesystem::path& file,
 
 std::vector<MeshWall> read_mesh_walls(const std::filesystem::path& file) {
   const std::string kind = formats::schema_of(h5::Reader(file)).kind;
+  // (the file is refused by name: opening and checking it a second time only to fail is waste)
   if (kind != "flow" && kind != "flowmesh")
-    h5::Reader(file).fail(
+    formats::ReadFrom{file}.fail(
         "/", "format 'tfmb/" + kind + "' has no flow mesh; give a flowmesh or flow file");
   // Either kind carries the mesh block; each is read (and checked) by its own reader.
   formats::ReadFrom source;
