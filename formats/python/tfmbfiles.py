@@ -43,7 +43,9 @@ class BadInput(Exception):
 
 
 class _Guard:
-    """`with _Guard(f, key):` turns any error but BadInput into BadInput.damaged(f, key, ...)."""
+    """`with guard(f, key):` turns any error but BadInput into BadInput.damaged(f, key, ...):
+    for a script that reads an object of an open file directly (h5py) rather than through the
+    functions below."""
 
     def __init__(self, f, key):
         self.f, self.key = f, key
@@ -57,6 +59,9 @@ class _Guard:
         if issubclass(kind, Exception):
             raise BadInput.damaged(self.f, self.key, error) from None
         return False
+
+
+guard = _Guard
 
 
 def text(value):
