@@ -7,7 +7,10 @@
 
 Every problem raises BadInput, whose message is one line naming the file and the object in it,
 "FILE: /object: what is wrong" ("FILE: what is wrong" when the file itself cannot be opened), as
-the C++ readers word them; the scripts print it after their name and exit 3 (bad input).
+the C++ readers word them; the scripts print it after their name and exit 3 (bad input). A file
+whose HDF5 structures are damaged (flipped bytes, truncation) makes h5py raise OSError, KeyError,
+RuntimeError, ... from any access; every function here turns that into BadInput naming the object
+it was reading ("FILE: /object: damaged or unreadable (...)"), so no script shows a traceback.
 """
 import os
 
@@ -31,6 +34,35 @@ class BadInput(Exception):
         """BadInput for object `key` of file `f` (an h5py.File or a path)."""
         return cls(f"{getattr(f, 'filename', f)}: /{key.strip('/')}: {what}")
 
+    @classmethod
+    def damaged(cls, f, key, error):
+        """BadInput for an h5py/numpy error met reading object `key` of `f` (a damaged file)."""
+        detail = str(error).splitlines()[0] if str(error) else ""
+        return cls.at(f, key, f"damaged or unreadable ({type(error).__name__}"
+                      f"{': ' + detail[:160] if detail else ''})")
+
+
+class _Guard:
+    """`with guard(f, key):` turns any error but BadInput into BadInput.damaged(f, key, ...):
+    for a script that reads an object of an open file directly (h5py) rather than through the
+    functions below."""
+
+    def __init__(self, f, key):
+        self.f, self.key = f, key
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, kind, error, trace):
+        if kind is None or issubclass(kind, (BadInput, KeyboardInterrupt, SystemExit)):
+            return False
+        if issubclass(kind, Exception):
+            raise BadInput.damaged(self.f, self.key, error) from None
+        return False
+
+
+guard = _Guard
+
 
 def text(value):
     """An attribute's value as str: h5py gives bytes for fixed-length strings, str otherwise."""
@@ -52,17 +84,19 @@ def open_kind(path, kinds):
     except OSError:
         raise BadInput(f"{path}: not an HDF5 file") from None
     try:
+        with _Guard(path, "/"):
+            root = {k: f.attrs[k] for k in ("format", "format_version") if k in f.attrs}
         expected = " or ".join(f"'tfmb/{k}'" for k in kinds)
-        if "format" not in f.attrs:
+        if "format" not in root:
             raise BadInput.at(path, "/", f"missing attribute 'format' (expected {expected}): "
                               "not a tfmb file?")
-        fmt = text(f.attrs["format"])
+        fmt = text(root["format"])
         kind = fmt[5:] if fmt.startswith("tfmb/") else None
         if kind not in kinds:
             raise BadInput.at(path, "/", f"attribute 'format' is '{fmt}', expected {expected}")
-        if "format_version" not in f.attrs:
+        if "format_version" not in root:
             raise BadInput.at(path, "/", "missing attribute 'format_version'")
-        version = text(f.attrs["format_version"])
+        version = text(root["format_version"])
         major, dot, minor = version.partition(".")
         if not (dot and major.isdigit() and minor.isdigit()):
             raise BadInput.at(path, "/", f"attribute 'format_version' is '{version}', "
@@ -79,12 +113,20 @@ def open_kind(path, kinds):
 def group(f, key):
     """The group `key` of `f`, refusing a missing one."""
     import h5py
-    if key.strip("/") and key not in f:
-        raise BadInput.at(f, key, "missing group")
-    g = f[key]
+    with _Guard(f, key):
+        if key.strip("/") and key not in f:
+            raise BadInput.at(f, key, "missing group")
+        g = f[key]
     if not isinstance(g, h5py.Group):
         raise BadInput.at(f, key, "is a dataset, expected a group")
     return g
+
+
+def members(f, key):
+    """The sorted names of the members of group `key` of `f`."""
+    g = group(f, key)
+    with _Guard(f, key):
+        return sorted(g)
 
 
 def _shape_text(shape):
@@ -99,20 +141,23 @@ def dataset(f, key, dtype=float, shape=None, below=None):
     (a tuple; None matches any extent), for floats NaN or infinity and, with `below`, values
     outside [0, below) (indices into another dataset)."""
     import h5py
-    if key not in f:
-        raise BadInput.at(f, key, "missing dataset")
-    d = f[key]
-    if not isinstance(d, h5py.Dataset):
-        raise BadInput.at(f, key, "is a group, expected a dataset")
+    with _Guard(f, key):
+        if key not in f:
+            raise BadInput.at(f, key, "missing dataset")
+        d = f[key]
+        if not isinstance(d, h5py.Dataset):
+            raise BadInput.at(f, key, "is a group, expected a dataset")
+        stored_dtype, stored_shape = d.dtype, d.shape
     want = np.dtype(np.float64 if dtype is float else np.int64 if dtype is int else dtype)
     allowed = "iu" if want.kind in "iu" else "fiu" if want.kind == "f" else want.kind
-    if d.dtype.kind not in allowed:
-        raise BadInput.at(f, key, f"wrong dtype {d.dtype}, expected {want}")
-    if shape is not None and (len(d.shape) != len(shape) or
-                              any(n is not None and n != m for n, m in zip(shape, d.shape))):
-        raise BadInput.at(f, key, f"wrong shape {_shape_text(d.shape)}, expected "
+    if stored_dtype.kind not in allowed:
+        raise BadInput.at(f, key, f"wrong dtype {stored_dtype}, expected {want}")
+    if shape is not None and (len(stored_shape) != len(shape) or
+                              any(n is not None and n != m for n, m in zip(shape, stored_shape))):
+        raise BadInput.at(f, key, f"wrong shape {_shape_text(stored_shape)}, expected "
                           f"{_shape_text(shape)}")
-    values = np.asarray(d[()], dtype=want)
+    with _Guard(f, key):
+        values = np.asarray(d[()], dtype=want)
     if want.kind == "f" and not np.all(np.isfinite(values)):
         i = int(np.flatnonzero(~np.isfinite(values))[0])
         where = f" (row {i // values.shape[1]}, column {i % values.shape[1]})" \
@@ -128,14 +173,16 @@ def attr(f, key, name, type=float, default=_REQUIRED):
     """Attribute `name` of object `key` ("/" for the root) as `type`: float (finite), int, bool
     (stored as an integer 0/1) or str. A missing attribute is refused unless `default` is given,
     which is then returned as it is."""
-    if key.strip("/") and key not in f:
-        raise BadInput.at(f, key, "missing group")
-    attrs = f[key].attrs
-    if name not in attrs:
+    with _Guard(f, key):
+        if key.strip("/") and key not in f:
+            raise BadInput.at(f, key, "missing group")
+        attrs = f[key].attrs
+        present = name in attrs
+        value = attrs[name] if present else None
+    if not present:
         if default is _REQUIRED:
             raise BadInput.at(f, key, f"missing attribute '{name}'")
         return default
-    value = attrs[name]
     if type is str:
         return text(value)
     if np.ndim(value) != 0:

@@ -15,8 +15,13 @@ and tfmb-flow --restart must exit 0, 1 or 3, never crash, name the damaged file 
 line when they exit 3, and leave no output file unless they exit 0 or 1. Stages that are not
 built (the sanitizer build makes only tfmb-check) are skipped.
 
+Last, tfmb-plot (tools/tfmb-plot/tfmb-plot, Python) draws from damaged copies of the example
+flow, structure, thermal and strain files: it must exit 0 or 3, on 3 print exactly one line
+"tfmb-plot: error: ..." naming the damaged file (never a Python traceback), and leave no
+picture behind.
+
   test_corrupt_files.py SOURCE_DIR BIN_DIR SCRATCH_DIR [--seed N] [--per-kind N]
-                        [--per-stage N] [--keep]
+                        [--per-stage N] [--per-plot N] [--keep]
 
 Prints one line per failure and a summary per kind and stage; exits 1 if anything failed.
 --keep leaves the damaged files of failures in SCRATCH_DIR/failed/ to reproduce them.
@@ -223,6 +228,57 @@ def run_stages(args, bin_dir, scratch, fail):
     return runs
 
 
+# tfmb-plot's picture of each kind it reads (tools/tfmb-plot/tfmb-plot).
+PLOTS = {"flow": [["wall-pressure"], ["field", "--field", "mach"], ["residuals"]],
+         "structure": [["deformed"]], "thermal": [["temperature"]], "strain": [["strain"]]}
+
+
+def judge_plot(path, output, code, stderr, timed_out):
+    """The failure text of one tfmb-plot run on a damaged file, or None."""
+    if timed_out or code not in READER_CODES:
+        return f"{outcome(code, timed_out)}: {stderr.strip()[-300:]}"
+    lines = stderr.splitlines()
+    if "Traceback" in stderr:
+        return f"a Python traceback: {stderr.strip()[-300:]}"
+    if code == 3:
+        if len(lines) != 1 or not lines[0].startswith(f"tfmb-plot: error: {path}"):
+            return f"exit 3 without one line naming the file: {stderr.strip()[-300:]}"
+        if os.path.exists(output):
+            return "exit 3 but it left the picture"
+    return None
+
+
+def run_plots(args, valid, scratch, fail):
+    """tfmb-plot on damaged copies of the example files; returns the number of runs."""
+    plot = os.path.join(os.path.abspath(args.source), "tools", "tfmb-plot", "tfmb-plot")
+    runs = 0
+    work = os.path.join(scratch, "plot")
+    os.makedirs(work)
+    for kind, commands in PLOTS.items():
+        rng = random.Random(args.seed * 1000003 + zlib.crc32(f"tfmb-plot {kind}".encode()))
+        counts = {}
+        for k, (label, data) in enumerate(mutations(valid[kind], args.per_plot, rng)):
+            path = os.path.join(work, f"{kind}-{k:02d}.h5")
+            with open(path, "wb") as f:
+                f.write(data)
+            command = commands[k % len(commands)]
+            output = os.path.join(work, "out.png")
+            code, stderr, timed_out = run([plot, command[0], path, *command[1:], "-o", output])
+            runs += 1
+            verdict = outcome(code, timed_out)
+            counts[verdict] = counts.get(verdict, 0) + 1
+            problem = judge_plot(path, output, code, stderr, timed_out)
+            if problem:
+                fail(f"tfmb-plot {command[0]} {kind} #{k} ({label}): {problem}", path)
+            else:
+                os.remove(path)
+            if os.path.exists(output):
+                os.remove(output)
+        print(f"tfmb-plot {kind}: {args.per_plot} damaged copies: "
+              + ", ".join(f"{n} {v}" for v, n in sorted(counts.items())), flush=True)
+    return runs
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("source")
@@ -231,6 +287,7 @@ def main():
     parser.add_argument("--seed", type=int, default=23)
     parser.add_argument("--per-kind", type=int, default=36)
     parser.add_argument("--per-stage", type=int, default=9)
+    parser.add_argument("--per-plot", type=int, default=9)
     parser.add_argument("--keep", action="store_true")
     args = parser.parse_args()
     bin_dir = os.path.abspath(args.bin)
@@ -293,9 +350,11 @@ def main():
     else:
         stage_runs = run_stages(args, bin_dir, scratch, fail)
 
+    plot_runs = run_plots(args, valid, scratch, fail) if args.per_plot > 0 else 0
+
     checked = len(kinds) * args.per_kind
     print(f"tfmb-check: {checked} damaged files of {len(kinds)} kinds; stages: {stage_runs} runs; "
-          f"{len(failures)} failures")
+          f"tfmb-plot: {plot_runs} runs; {len(failures)} failures")
     return 1 if failures else 0
 
 

@@ -3,7 +3,7 @@
 # per case under RUN_ROOT: the coupled configurations and nasa-2dcd with FLOW as the flow stage
 # (tfmb-flow in CI; tests/workflows/analytic-flow to exercise the rest of a chain alone), the
 # channel and flat-plate flow cases with tfmb-flow itself, the structure-only cases with tfmb-beam. Checks that each run exits 0,
-# writes summary.json, and that every .h5 it wrote passes tfmb-check; prints the time per case.
+# writes summary.json and report.html, and that every .h5 it wrote passes tfmb-check; prints the time per case.
 # A case whose model uses something a tool refuses as "not supported by this ... version" (the
 # flexible joints of tfmb-beam, issue 7) is reported as blocked, not failed.
 #   smoke_all.sh SOURCE_DIR RUN_ROOT BIN_DIR FLOW
@@ -32,6 +32,7 @@ run_case() {  # name target [make variables...]
     failed=1; return
   fi
   if [ ! -s "$run/summary.json" ]; then echo "FAIL    $name: no summary.json"; failed=1; return; fi
+  if [ ! -s "$run/report.html" ]; then echo "FAIL    $name: no report.html"; failed=1; return; fi
   local bad=0 f
   while IFS= read -r f; do
     "$bin/tfmb-check" --no-summary "$f" > /dev/null 2>> "$run.check" || bad=1
@@ -48,12 +49,12 @@ run_case config2-dynamic twoway CASE=config2 EXCHANGE=dynamic FLOW="$flow"
 run_case config3 oneway CASE=config3 FLOW="$flow"
 run_case config4 twoway CASE=config4 FLOW="$flow"
 run_case config5 twoway CASE=config5 FLOW="$flow"
-run_case nparc-cdv "flow plots summary" CASE=nparc-cdv
+run_case nparc-cdv "flow summary report" CASE=nparc-cdv
 # NASA B1 at NPR 8.91, second-order SA (case.mk): converges on the SMOKE mesh (124 iterations);
 # a smoke run would accept a stop at SMOKE's iteration limit (exit 1) and checks the files.
-run_case nasa-2dcd "flow plots summary" CASE=nasa-2dcd FLOW="$flow"
-run_case tmr-flatplate "flow plots summary" CASE=tmr-flatplate
-run_case beam-revolute "structure plots summary" CASE=beam-revolute
-run_case flexible-joint "structure plots summary" CASE=flexible-joint
+run_case nasa-2dcd "flow summary report" CASE=nasa-2dcd FLOW="$flow"
+run_case tmr-flatplate "flow summary report" CASE=tmr-flatplate
+run_case beam-revolute "structure summary report" CASE=beam-revolute
+run_case flexible-joint "structure summary report" CASE=flexible-joint
 [ $failed -eq 0 ] && echo "smoke: every case ran" || echo "smoke: some cases failed"
 exit $failed
