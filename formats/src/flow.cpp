@@ -148,6 +148,12 @@ void write_flow(const std::filesystem::path& file, const Flow& flow, const Prove
   w.write("/fields/point/temperature", flow.temperature, "K", "static temperature");
   w.write("/fields/point/mach", flow.mach, "1");
   if (!flow.nu_tilde.empty()) w.write("/fields/point/nu_tilde", flow.nu_tilde, "m^2/s", "Spalart-Allmaras variable");
+  if (!flow.turbulent_kinetic_energy.empty())
+    w.write("/fields/point/turbulent_kinetic_energy", flow.turbulent_kinetic_energy, "m^2/s^2",
+            "k of the k-omega SST model");
+  if (!flow.specific_dissipation_rate.empty())
+    w.write("/fields/point/specific_dissipation_rate", flow.specific_dissipation_rate, "1/s",
+            "omega of the k-omega SST model");
   if (!flow.eddy_viscosity.empty()) w.write("/fields/point/eddy_viscosity", flow.eddy_viscosity, "Pa s");
   if (!flow.wall_distance.empty()) w.write("/fields/point/wall_distance", flow.wall_distance, "m");
   for (const FlowWall& t : flow.walls) write_wall(w, t);
@@ -187,10 +193,19 @@ Flow read_flow(const std::filesystem::path& file) {
                                   " has a non-physical state (density, pressure and temperature must be positive)");
   }
   for (auto [name, target] : {std::pair{"nu_tilde", &flow.nu_tilde}, std::pair{"eddy_viscosity", &flow.eddy_viscosity},
-                              std::pair{"wall_distance", &flow.wall_distance}}) {
+                              std::pair{"wall_distance", &flow.wall_distance},
+                              std::pair{"turbulent_kinetic_energy", &flow.turbulent_kinetic_energy},
+                              std::pair{"specific_dissipation_rate", &flow.specific_dissipation_rate}}) {
     const std::string path = std::string("/fields/point/") + name;
     if (r.exists(path)) *target = r.read_vector(path, n);
   }
+  // a restart hands these to the SST equations, which need k >= 0 and omega > 0
+  for (std::size_t k = 0; k < flow.turbulent_kinetic_energy.size(); ++k)
+    if (!(flow.turbulent_kinetic_energy[k] >= 0.0))
+      r.fail("/fields/point/turbulent_kinetic_energy", "node " + std::to_string(k) + " has a negative k");
+  for (std::size_t k = 0; k < flow.specific_dissipation_rate.size(); ++k)
+    if (!(flow.specific_dissipation_rate[k] > 0.0))
+      r.fail("/fields/point/specific_dissipation_rate", "node " + std::to_string(k) + " has omega <= 0");
   if (r.is_group("/walls"))
     for (const std::string& name : r.children("/walls"))
       flow.walls.push_back(read_wall(r, name, static_cast<std::int64_t>(n)));

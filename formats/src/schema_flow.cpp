@@ -7,7 +7,7 @@ Schema flow_schema() {
   Schema s{"flow",
            "tfmb/flow",
            1,
-           4,
+           5,
            "flow solution: node fields, wall traces, integrated thrust and mass flow",
            true,
            {},
@@ -20,6 +20,10 @@ Schema flow_schema() {
   s.datasets.push_back(f64("/fields/point/temperature", {"N"}, "K", "static temperature"));
   s.datasets.push_back(f64("/fields/point/mach", {"N"}, "1", ""));
   s.datasets.push_back(f64("/fields/point/nu_tilde", {"N"}, "m^2/s", "Spalart-Allmaras variable", false));
+  s.datasets.push_back(f64("/fields/point/turbulent_kinetic_energy", {"N"}, "m^2/s^2",
+                           "(1.5) k of the k-omega SST model", false));
+  s.datasets.push_back(f64("/fields/point/specific_dissipation_rate", {"N"}, "1/s",
+                           "(1.5) omega of the k-omega SST model", false));
   s.datasets.push_back(f64("/fields/point/eddy_viscosity", {"N"}, "Pa s", "", false));
   s.datasets.push_back(f64("/fields/point/wall_distance", {"N"}, "m", "", false));
   s.datasets.push_back(i64("/walls/*/node", {"n"}, "N", "mesh node of each trace point"));

@@ -55,8 +55,10 @@ int main(int argc, char** argv) {
   table.add("--gas-constant", o.gas_constant, "J/(kg K)", "specific gas constant");
   table.add("--model", o.model, "",
             "euler, laminar (Sutherland viscosity, Pr 0.72), sa (Spalart-Allmaras RANS with ft2, "
-            "SA-neg for negative nu_tilde, Pr_t 0.9) or sa-noft2",
-            CLI::IsMember({"euler", "laminar", "sa", "sa-noft2"}));
+            "SA-neg for negative nu_tilde, Pr_t 0.9), sa-noft2, sst (k-omega SST-2003, Menter, "
+            "Kuntz and Langtry 2003, as NASA TMR defines it; k and omega solved segregated) or "
+            "sst-v (TMR's SST-V: Menter 1994 with the vorticity in mu_t and the production)",
+            CLI::IsMember({"euler", "laminar", "sa", "sa-noft2", "sst", "sst-v"}));
   table.add("--heat-transfer-dt", o.heat_transfer_dt, "K",
             "viscous runs with adiabatic walls: after converging, a probe run with the walls this "
             "much below the adiabatic wall temperature gives the heat transfer coefficient (0: "

@@ -102,7 +102,8 @@ class FlowStage {
       : o(options),
         log(logger),
         lm((check_options(options), load_mesh(options.mesh_file))),
-        turbulent(o.model == "sa" || o.model == "sa-noft2"),
+        sst_model(o.model == "sst" || o.model == "sst-v"),
+        turbulent(o.model == "sa" || o.model == "sa-noft2" || sst_model),
         viscous(o.model == "laminar" || turbulent),
         gas{o.gamma, o.gas_constant},
         t_inf(o.ambient_temperature),
@@ -128,8 +129,16 @@ class FlowStage {
             "--gamma must lie in (1, 2), got " + text::format_number(o.gamma));
     require(o.gas_constant > 0.0, "--gas-constant must be positive");
     require(o.ambient_pressure > 0.0, "--ambient-pressure must be positive");
-    require(o.model == "euler" || o.model == "laminar" || o.model == "sa" || o.model == "sa-noft2",
-            "--model must be euler, laminar, sa or sa-noft2, got '" + o.model + "'");
+    require(o.model == "euler" || o.model == "laminar" || o.model == "sa" || o.model == "sa-noft2" ||
+                o.model == "sst" || o.model == "sst-v",
+            "--model must be euler, laminar, sa, sa-noft2, sst or sst-v, got '" + o.model + "'");
+    const bool sst = o.model == "sst" || o.model == "sst-v";
+    require(!sst || o.time.time_step <= 0.0,
+            "--time-step: the time-accurate mode is not available with --model " + o.model +
+                " yet (Spalart-Allmaras has it)");
+    require(!sst || o.turbulence_coupling.empty() || o.turbulence_coupling == "segregated",
+            "--turbulence-coupling " + o.turbulence_coupling + ": k-omega SST is solved segregated; "
+            "coupled and auto are for Spalart-Allmaras");
     require(o.farfield_flux == "roe" || o.farfield_flux == "riemann",
             "--farfield-flux must be roe or riemann, got '" + o.farfield_flux + "'");
   }
@@ -194,6 +203,8 @@ class FlowStage {
     settings.viscous = viscous;
     settings.turbulent = turbulent;
     settings.sa_ft2 = o.model != "sa-noft2";
+    settings.turbulence_model = sst_model ? TurbulenceModel::sst : TurbulenceModel::spalart_allmaras;
+    settings.sst_variant = o.model == "sst-v" ? sst::Variant::sst_v : sst::Variant::sst2003;
     settings.sa_exact_jacobian = o.turbulence_jacobian == "exact";
     settings.matrix_free = o.matrix_free == "true"   ? MatrixFree::on
                            : o.matrix_free == "auto" ? MatrixFree::after_limiter_freeze
@@ -242,7 +253,16 @@ class FlowStage {
     FlowSolver& solver = *solver_;
     if (o.restart_file) {
       solver.set_primitive(primitive_states(*restart));
-      if (turbulent) {
+      if (sst_model) {
+        if (!restart->turbulent_kinetic_energy.empty() && !restart->specific_dissipation_rate.empty()) {
+          solver.set_sst(restart->turbulent_kinetic_energy, restart->specific_dissipation_rate);
+        } else {
+          log.info(
+              "restart file has no /fields/point/turbulent_kinetic_energy and "
+              "specific_dissipation_rate (not an SST run): k and omega start from their "
+              "free-stream values, the mean flow from the restart");
+        }
+      } else if (turbulent) {
         if (!restart->nu_tilde.empty()) {
           solver.set_nu_tilde(restart->nu_tilde);
         } else {
@@ -374,8 +394,10 @@ class FlowStage {
              std::to_string(first.iterations) + " iterations, residual drop " +
              text::format_number(first.residual_drop) + "; continuing at second order");
     solver.set_primitive(first_solver.primitive());
-    if (turbulent)
+    if (turbulent) {
       solver.set_nu_tilde(first_solver.nu_tilde());
+      solver.set_sst(first_solver.sst_k(), first_solver.sst_omega());
+    }
     return first;
   }
 
@@ -439,6 +461,8 @@ class FlowStage {
       traces = solver.wall_traces(wall_curves);
     }
     nu_tilde = turbulent ? solver.nu_tilde() : std::vector<double>{};
+    sst_k = solver.sst_k();
+    sst_omega = solver.sst_omega();
     eddy_viscosity = turbulent ? solver.eddy_viscosity() : std::vector<double>{};
   }
 
@@ -535,6 +559,8 @@ class FlowStage {
     out.mach = mach;
     if (turbulent) {
       out.nu_tilde = nu_tilde;
+      out.turbulent_kinetic_energy = sst_k;
+      out.specific_dissipation_rate = sst_omega;
       out.eddy_viscosity = eddy_viscosity;
       out.wall_distance = solver.wall_distance();
     }
@@ -710,7 +736,7 @@ class FlowStage {
   const RunOptions& o;
   const Logger& log;
   LoadedMesh lm;
-  const bool turbulent, viscous;
+  const bool sst_model, turbulent, viscous;
   const PerfectGas gas;
   const double t_inf;
   const State w_inf;
@@ -724,7 +750,7 @@ class FlowStage {
   RunResult result;
   std::vector<State> w_solver;  // the solution, before the heat-transfer probe changes it
   std::vector<WallTrace> traces;
-  std::vector<double> nu_tilde, eddy_viscosity;
+  std::vector<double> nu_tilde, eddy_viscosity, sst_k, sst_omega;
   std::vector<std::vector<double>> heat_transfer;  // per wall curve [W/(m^2 K)]
 };
 

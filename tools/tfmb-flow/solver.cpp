@@ -208,7 +208,7 @@ FlowSolver::FlowSolver(const Mesh& mesh, Geometry geometry, const PerfectGas& ga
   eddy_viscosity_.assign(n, 0.0);
   if (settings_.turbulent) {
     if (!settings_.viscous)
-      throw std::invalid_argument("flow: the Spalart-Allmaras model needs the viscous terms");
+      throw std::invalid_argument("flow: a turbulence model needs the viscous terms");
     std::vector<std::array<Vec2, 2>> walls;
     for (int b = 0; b < static_cast<int>(bcs_.size()); ++b) {
       if (!bcs_[b].no_slip())
@@ -217,6 +217,10 @@ FlowSolver::FlowSolver(const Mesh& mesh, Geometry geometry, const PerfectGas& ga
         walls.push_back({dual_.coords[e[0]], dual_.coords[e[1]]});
     }
     wall_distance_ = tfmb::flow::wall_distance(dual_.coords, walls);
+    if (sst()) {
+      init_sst();
+      return;
+    }
     nu_tilde_.assign(n, 0.0);
     sa_row_scale_ = settings_.reference_state[0];
     if (settings_.turbulence_coupling != TurbulenceCoupling::segregated)
@@ -249,7 +253,7 @@ void FlowSolver::make_walls_isothermal(double below) {
 }
 
 void FlowSolver::set_freestream_nu_tilde() {
-  if (!settings_.turbulent)
+  if (!settings_.turbulent || sst())
     return;
   for (int i = 0; i < dual_.num_nodes; ++i) {
     const State w = gas_.primitive(u_[i]);
@@ -259,7 +263,7 @@ void FlowSolver::set_freestream_nu_tilde() {
 }
 
 void FlowSolver::set_nu_tilde(const std::vector<double>& nu_tilde) {
-  if (!settings_.turbulent)
+  if (!settings_.turbulent || sst())
     return;
   if (static_cast<int>(nu_tilde.size()) != dual_.num_nodes) {
     throw std::invalid_argument("flow: nu_tilde size differs from mesh");
@@ -271,7 +275,7 @@ void FlowSolver::set_nu_tilde(const std::vector<double>& nu_tilde) {
 
 std::vector<double> FlowSolver::nu_tilde() const {
   std::vector<double> v;
-  if (!settings_.turbulent)
+  if (!settings_.turbulent || sst())
     return v;
   v.resize(nu_tilde_.size());
   for (std::size_t i = 0; i < v.size(); ++i)
@@ -302,6 +306,10 @@ std::vector<double> FlowSolver::wall_distance() const {
 void FlowSolver::update_eddy_viscosity() {
   if (!settings_.turbulent)
     return;
+  if (sst()) {
+    update_sst_eddy_viscosity();
+    return;
+  }
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < dual_.num_nodes; ++i) {
     const double mu = settings_.viscosity.viscosity(gas_.temperature(w_[i]));
@@ -521,7 +529,11 @@ void FlowSolver::set_primitive(const std::vector<State>& w) {
   apply_strong_conditions(u_);
   limiter_frozen_ = false;
   limiter_stale_ = true;
-  set_freestream_nu_tilde();  // a restart overrides it with set_nu_tilde()
+  // a restart overrides these with set_nu_tilde() or set_sst()
+  if (sst())
+    set_freestream_sst();
+  else
+    set_freestream_nu_tilde();
 }
 
 std::vector<State> FlowSolver::primitive() const {
@@ -591,10 +603,10 @@ void FlowSolver::evaluate_residual(bool update_limiter) {
 
   const bool second = settings_.order >= 2;
   const bool axi = dual_.geometry == Geometry::axisymmetric;
-  update_eddy_viscosity();
   const bool turbulent = settings_.turbulent;
   if ((second && !recon_mapped_) || settings_.viscous)
     lsq_gradients(dual_, lsq_, w_, grad_);
+  update_eddy_viscosity();  // after the gradients: SST's mu_t needs the strain rate
   if (second && recon_mapped_)
     lsq_gradients(dual_, recon_lsq_, w_, recon_grad_);
   const auto& rgrad = recon_mapped_ ? recon_grad_ : grad_;
@@ -719,6 +731,8 @@ void FlowSolver::evaluate_residual(bool update_limiter) {
 void FlowSolver::begin_time_step(double dt) {
   if (!(dt > 0.0) || !std::isfinite(dt))
     throw std::invalid_argument("flow: physical time step must be positive");
+  if (sst())
+    throw std::invalid_argument("flow: the time-accurate mode is not available with k-omega SST yet");
   const bool first = time_u_n_.empty() || dt != time_dt_;
   time_u_nm1_ = std::move(time_u_n_);
   time_u_n_ = u_;
@@ -1231,8 +1245,8 @@ SolveReport FlowSolver::solve() {
       break;
     linear_step(s);
     relax_update(s);
-    if (settings_.turbulent && !s.coupled)
-      s.rec.turbulence_residual = turbulence_step(s.cfl);  // segregated SA, after the mean flow
+    if (settings_.turbulent && !s.coupled)  // segregated, after the mean flow
+      s.rec.turbulence_residual = sst() ? sst_step(s.cfl) : turbulence_step(s.cfl);
     accept_or_reject_step(s);
     report_progress(s);
     if (march_stopped(s))
@@ -1259,7 +1273,7 @@ void FlowSolver::start_run(SolveLoop& s) {
   s.du.resize(s.nb * static_cast<std::size_t>(n));
   s.diag_scale.resize(n);
   s.u_good = u_;
-  s.nu_good = nu_tilde_;
+  s.nu_good = turbulence_snapshot();
   s.cfl = settings_.cfl_start;
   s.r_max = settings_.residual_reference;
   s.cfl_ceiling = settings_.cfl_max;
@@ -1307,7 +1321,7 @@ void FlowSolver::switch_turbulence_coupling(SolveLoop& s) {
     s.nb = 5;
     s.rhs.assign(s.nb * static_cast<std::size_t>(s.n), 0.0);
     s.du.assign(s.nb * static_cast<std::size_t>(s.n), 0.0);
-    s.nu_good = nu_tilde_;
+    s.nu_good = turbulence_snapshot();
     s.report.coupled_from = s.it;
     if (settings_.print_every > 0)
       std::fprintf(stderr, "iter %5d  coupled SA Newton steps from here (drop %.2e)\n", s.it,
@@ -1334,7 +1348,7 @@ void FlowSolver::ramp_inflow(const SolveLoop& s) {
 void FlowSolver::back_off_non_finite(SolveLoop& s) {
   u_ = s.u_good;
   if (s.coupled)
-    nu_tilde_ = s.nu_good;
+    restore_turbulence(s.nu_good);
   s.cfl_scale *= 0.1;
   s.cfl = std::max(s.cfl * 0.1, 1e-3);
   ++s.report.backoffs;
@@ -1373,7 +1387,7 @@ bool FlowSolver::track_residual(SolveLoop& s) {
     s.last_minimum = s.it;
     s.last_progress = s.it;
     s.best_u = u_;
-    s.best_nu = nu_tilde_;
+    s.best_nu = turbulence_snapshot();
     s.best_iteration = s.it;
   } else if (s.newton_from == 0 && s.cfl < settings_.cfl_start && r > kDivergedRise * s.r_min &&
              !s.best_u.empty() && s.report.best_state_restarts < kBestStateRestarts) {
@@ -1392,7 +1406,7 @@ bool FlowSolver::track_residual(SolveLoop& s) {
                    s.it, r, r / s.r_min, s.cfl, s.best_iteration, s.cfl_ceiling);
     u_ = s.best_u;
     if (!s.best_nu.empty())
-      nu_tilde_ = s.best_nu;
+      restore_turbulence(s.best_nu);
     limiter_frozen_ = false;
     s.cfl = settings_.cfl_start;
     s.cfl_scale = 1.0;
@@ -1466,7 +1480,7 @@ bool FlowSolver::abandon_failed_newton_phase(SolveLoop& s) {
                  s.newton_fallbacks < kNewtonFallbacks ? "" : ", defect correction from here on");
   u_ = s.newton_start_u;
   if (!s.newton_start_nu.empty())
-    nu_tilde_ = s.newton_start_nu;
+    restore_turbulence(s.newton_start_nu);
   limiter_frozen_ = false;
   s.newton_from = 0;
   s.last_minimum = s.last_progress = it;
@@ -1618,7 +1632,7 @@ GmresResult FlowSolver::newton_krylov_solve(SolveLoop& s) {
   if (s.newton_from == 0 && settings_.matrix_free == MatrixFree::after_limiter_freeze) {
     s.newton_from = s.report.newton_from = it;
     s.newton_start_u = u_;
-    s.newton_start_nu = nu_tilde_;
+    s.newton_start_nu = turbulence_snapshot();
     s.newton_start_residual = s.r_previous;
     s.newton_start_cfl = s.cfl;
     if (settings_.print_every > 0)
@@ -1712,7 +1726,7 @@ void FlowSolver::relax_update(SolveLoop& s) {
   int limited = 0;
   s.u_good = u_;
   if (coupled)
-    s.nu_good = nu_tilde_;
+    s.nu_good = turbulence_snapshot();
   for (int i = 0; i < n; ++i) {
     const double* du_i = s.du.data() + nb * static_cast<std::size_t>(i);
     State un;
@@ -1752,7 +1766,7 @@ void FlowSolver::accept_or_reject_step(SolveLoop& s) {
   if (!physical(u_)) {
     u_ = s.u_good;
     if (s.coupled)
-      nu_tilde_ = s.nu_good;
+      restore_turbulence(s.nu_good);
     s.cfl_scale *= 0.1;
     s.cfl *= 0.1;
     ++s.report.backoffs;
@@ -1791,7 +1805,7 @@ void FlowSolver::report_progress(SolveLoop& s) {
                  it, s.rnorm[0], s.report.residual_drop, s.cfl, omega, s.lin.iterations,
                  s.lin.relative_residual);
     if (settings_.turbulent)
-      std::fprintf(stderr, "  res(nu_t) %.2e", s.rec.turbulence_residual);
+      std::fprintf(stderr, sst() ? "  res(k) %.2e" : "  res(nu_t) %.2e", s.rec.turbulence_residual);
     // where the density residual is largest: the first thing to look at when it stalls
     const int worst = worst_residual_node();
     std::fprintf(stderr, "  max at (%.4g, %.4g)", dual_.coords[worst].x, dual_.coords[worst].y);
@@ -1821,7 +1835,7 @@ void FlowSolver::finish_run(SolveLoop& s) {
     if (!physical(u_)) {
       u_ = s.u_good;
       if (s.coupled)
-        nu_tilde_ = s.nu_good;
+        restore_turbulence(s.nu_good);
       compute_residual(!limiter_frozen_);
     }
     report.stop_reason =

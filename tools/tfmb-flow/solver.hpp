@@ -14,10 +14,14 @@
 #include "linear_solver.hpp"
 #include "mesh_dual.hpp"
 #include "scalar_ilu.hpp"
+#include "turbulence_sst.hpp"
 
 namespace tfmb::flow {
 
 enum class TurbulenceCoupling { segregated, coupled, automatic };
+
+// The turbulence model of a turbulent run (SolverSettings::turbulent).
+enum class TurbulenceModel { spalart_allmaras, sst };
 
 // How the second-order pseudo-time steps are solved (SolverSettings::matrix_free).
 enum class MatrixFree {
@@ -143,6 +147,11 @@ struct SolverSettings {
   // which the density residual has fallen by coupling_switch_drop.
   TurbulenceCoupling turbulence_coupling = TurbulenceCoupling::segregated;
   double coupling_switch_drop = 1e-2;
+  // Spalart-Allmaras (the settings sa_* below) or Menter's k-omega SST (turbulence_sst.hpp):
+  // SST's k and omega are solved segregated, one implicit step of each after the mean-flow step
+  // (the coupled block system is SA's only so far).
+  TurbulenceModel turbulence_model = TurbulenceModel::spalart_allmaras;
+  sst::Variant sst_variant = sst::Variant::sst2003;
   bool sa_exact_jacobian = true;     // SA: the whole linearisation (else its M-matrix part)
   bool sa_ft2 = true;                // the ft2 term of standard SA (TMR "SA"); false: SA-noft2
   double sa_freestream_ratio = 3.0;  // nu_tilde / nu entering at inflow and far field (TMR)
@@ -159,7 +168,8 @@ struct IterationRecord {
   double relaxation = 1.0;  // smallest fraction of the Newton update applied at a node
   int linear_iterations = 0;
   double linear_residual = 0.0;
-  double turbulence_residual = 0.0;  // RMS of d nu_tilde / dt [m^2/s^2] (0 without SA)
+  // RMS of d nu_tilde / dt [m^2/s^2] (SA) or of dk/dt [m^2/s^3] (SST); 0 when laminar
+  double turbulence_residual = 0.0;
   double wall_time = 0.0;            // since the start of solve() [s]
 };
 
@@ -242,6 +252,11 @@ class FlowSolver {
   std::vector<double> nu_tilde() const;
   std::vector<double> eddy_viscosity();
   std::vector<double> wall_distance() const;
+  // SST's k [m^2/s^2] and omega [1/s] per node (empty unless SST); set_sst() keeps the wall
+  // values (k = 0, omega from the wall condition) whatever is given there.
+  void set_sst(const std::vector<double>& k, const std::vector<double>& omega);
+  std::vector<double> sst_k() const;
+  std::vector<double> sst_omega() const;
   std::vector<State> conservative() const;
   const std::vector<Vec2>& node_coords() const { return coords_external_; }
   std::vector<double> node_area() const;  // planar dual-cell areas [m^2]
@@ -328,6 +343,20 @@ class FlowSolver {
     return turbulence_coupled_ ? jac_coupled_ : jac_;
   }
   void set_freestream_nu_tilde();
+  // SST (solver_sst.cpp): the wall condition's distances, the free-stream start, mu_t, and the
+  // segregated implicit step of k and omega (returns the RMS of dk/dt)
+  bool sst() const {
+    return settings_.turbulent && settings_.turbulence_model == TurbulenceModel::sst;
+  }
+  void init_sst();
+  void set_freestream_sst();
+  void apply_sst_wall_values();
+  void update_sst_eddy_viscosity();
+  double sst_step(double cfl);
+  // The turbulence variables for the march's returns to an earlier state: nu_tilde (SA) or k
+  // then omega (SST); empty when laminar
+  std::vector<double> turbulence_snapshot() const;
+  void restore_turbulence(const std::vector<double>& snapshot);
   State residual_norm() const;
   // y = (V/dt + dR/du) x of the current residual, see SolverSettings::matrix_free
   LinearOperator matrix_free_operator(const std::vector<double>& diag_scale);
@@ -390,6 +419,9 @@ class FlowSolver {
   std::vector<State> u_, w_, res_, phi_, edge_flux_;
   std::vector<std::array<double, 8>> grad_;
   std::vector<double> nu_tilde_, eddy_viscosity_, wall_distance_;
+  // SST: k, omega, and per no-slip node 60 / (beta1 d1^2) (omega_wall = that times nu)
+  std::vector<double> sst_k_, sst_omega_, sst_wall_omega_scale_;
+  ScalarIlu0 sst_ilu_;
   std::vector<double> sa_res_, sa_diag_, sa_offdiag_;
   // Coupled system only: d sa_res_i / d U_i (4 per node) and d sa_res_i / d U_j (4 per node
   // edge incidence) through the convecting velocity, and d f_e / d mu_t at each edge (f_e the

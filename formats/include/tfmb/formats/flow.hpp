@@ -59,6 +59,8 @@ struct Flow : ReadFrom {
   std::vector<double> temperature;  // [K]
   std::vector<double> mach;         // [1]
   std::vector<double> nu_tilde, eddy_viscosity, wall_distance;  // optional (turbulent runs)
+  // (1.5) optional, k-omega SST runs: k [m^2/s^2] and omega [1/s]
+  std::vector<double> turbulent_kinetic_energy, specific_dissipation_rate;
   std::vector<FlowWall> walls;  // by name
   // Integrals per unit depth (planar) [kg/(s m)], [N/m], [deg], [1].
   double mass_flow = 0.0, thrust_x = 0.0, thrust_y = 0.0, thrust_angle = 0.0, discharge_coefficient = 0.0;
