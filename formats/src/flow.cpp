@@ -192,20 +192,23 @@ Flow read_flow(const std::filesystem::path& file) {
       r.fail("/fields/point", "node " + std::to_string(k) +
                                   " has a non-physical state (density, pressure and temperature must be positive)");
   }
-  for (auto [name, target] : {std::pair{"nu_tilde", &flow.nu_tilde}, std::pair{"eddy_viscosity", &flow.eddy_viscosity},
-                              std::pair{"wall_distance", &flow.wall_distance},
-                              std::pair{"turbulent_kinetic_energy", &flow.turbulent_kinetic_energy},
-                              std::pair{"specific_dissipation_rate", &flow.specific_dissipation_rate}}) {
+  for (auto [name, target] :
+       {std::pair{"nu_tilde", &flow.nu_tilde}, std::pair{"eddy_viscosity", &flow.eddy_viscosity},
+        std::pair{"wall_distance", &flow.wall_distance},
+        std::pair{"turbulent_kinetic_energy", &flow.turbulent_kinetic_energy},
+        std::pair{"specific_dissipation_rate", &flow.specific_dissipation_rate}}) {
     const std::string path = std::string("/fields/point/") + name;
     if (r.exists(path)) *target = r.read_vector(path, n);
   }
   // a restart hands these to the SST equations, which need k >= 0 and omega > 0
   for (std::size_t k = 0; k < flow.turbulent_kinetic_energy.size(); ++k)
     if (!(flow.turbulent_kinetic_energy[k] >= 0.0))
-      r.fail("/fields/point/turbulent_kinetic_energy", "node " + std::to_string(k) + " has a negative k");
+      r.fail("/fields/point/turbulent_kinetic_energy",
+             "node " + std::to_string(k) + " has a negative k");
   for (std::size_t k = 0; k < flow.specific_dissipation_rate.size(); ++k)
     if (!(flow.specific_dissipation_rate[k] > 0.0))
-      r.fail("/fields/point/specific_dissipation_rate", "node " + std::to_string(k) + " has omega <= 0");
+      r.fail("/fields/point/specific_dissipation_rate",
+             "node " + std::to_string(k) + " has omega <= 0");
   if (r.is_group("/walls"))
     for (const std::string& name : r.children("/walls"))
       flow.walls.push_back(read_wall(r, name, static_cast<std::int64_t>(n)));

@@ -80,8 +80,8 @@ TEST(Sst, BlendingNearAndFarFromTheWall) {
   EXPECT_NEAR(wall.f2, 1.0, 1e-12);
   // far from it in a free stream of TMR's values (a = 347 m/s): both vanish
   const double a = 347.0, rho = 1.2, mu = 1.8e-5;
-  const sst::Blending far = sst::blending(c, sst::freestream_k(a), sst::freestream_omega(rho, a, mu),
-                                          nu, 1.0, 0.0);
+  const sst::Blending far =
+      sst::blending(c, sst::freestream_k(a), sst::freestream_omega(rho, a, mu), nu, 1.0, 0.0);
   EXPECT_LT(far.f1, 1e-6);
   EXPECT_LT(far.f2, 1e-6);
 }

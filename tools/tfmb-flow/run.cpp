@@ -129,16 +129,17 @@ class FlowStage {
             "--gamma must lie in (1, 2), got " + text::format_number(o.gamma));
     require(o.gas_constant > 0.0, "--gas-constant must be positive");
     require(o.ambient_pressure > 0.0, "--ambient-pressure must be positive");
-    require(o.model == "euler" || o.model == "laminar" || o.model == "sa" || o.model == "sa-noft2" ||
-                o.model == "sst" || o.model == "sst-v",
+    require(o.model == "euler" || o.model == "laminar" || o.model == "sa" ||
+                o.model == "sa-noft2" || o.model == "sst" || o.model == "sst-v",
             "--model must be euler, laminar, sa, sa-noft2, sst or sst-v, got '" + o.model + "'");
     const bool sst = o.model == "sst" || o.model == "sst-v";
     require(!sst || o.time.time_step <= 0.0,
             "--time-step: the time-accurate mode is not available with --model " + o.model +
                 " yet (Spalart-Allmaras has it)");
     require(!sst || o.turbulence_coupling.empty() || o.turbulence_coupling == "segregated",
-            "--turbulence-coupling " + o.turbulence_coupling + ": k-omega SST is solved segregated; "
-            "coupled and auto are for Spalart-Allmaras");
+            "--turbulence-coupling " + o.turbulence_coupling +
+                ": k-omega SST is solved segregated; "
+                "coupled and auto are for Spalart-Allmaras");
     require(o.farfield_flux == "roe" || o.farfield_flux == "riemann",
             "--farfield-flux must be roe or riemann, got '" + o.farfield_flux + "'");
   }
@@ -203,7 +204,8 @@ class FlowStage {
     settings.viscous = viscous;
     settings.turbulent = turbulent;
     settings.sa_ft2 = o.model != "sa-noft2";
-    settings.turbulence_model = sst_model ? TurbulenceModel::sst : TurbulenceModel::spalart_allmaras;
+    settings.turbulence_model =
+        sst_model ? TurbulenceModel::sst : TurbulenceModel::spalart_allmaras;
     settings.sst_variant = o.model == "sst-v" ? sst::Variant::sst_v : sst::Variant::sst2003;
     settings.sa_exact_jacobian = o.turbulence_jacobian == "exact";
     settings.matrix_free = o.matrix_free == "true"   ? MatrixFree::on
@@ -254,7 +256,8 @@ class FlowStage {
     if (o.restart_file) {
       solver.set_primitive(primitive_states(*restart));
       if (sst_model) {
-        if (!restart->turbulent_kinetic_energy.empty() && !restart->specific_dissipation_rate.empty()) {
+        if (!restart->turbulent_kinetic_energy.empty() &&
+            !restart->specific_dissipation_rate.empty()) {
           solver.set_sst(restart->turbulent_kinetic_energy, restart->specific_dissipation_rate);
         } else {
           log.info(

@@ -732,7 +732,8 @@ void FlowSolver::begin_time_step(double dt) {
   if (!(dt > 0.0) || !std::isfinite(dt))
     throw std::invalid_argument("flow: physical time step must be positive");
   if (sst())
-    throw std::invalid_argument("flow: the time-accurate mode is not available with k-omega SST yet");
+    throw std::invalid_argument(
+        "flow: the time-accurate mode is not available with k-omega SST yet");
   const bool first = time_u_n_.empty() || dt != time_dt_;
   time_u_nm1_ = std::move(time_u_n_);
   time_u_n_ = u_;

@@ -175,9 +175,10 @@ double FlowSolver::sst_step(double cfl) {
     cross[i] = gk.x * gw.x + gk.y * gw.y;
     const double mu = visc.viscosity(gas_.temperature(w_[i]));
     nu[i] = mu / w_[i][0];
-    const sst::Blending b = wall_node_bc_[i] >= 0 ? sst::Blending{1.0, 1.0}
-                                                  : sst::blending(c, sst_k_[i], sst_omega_[i], nu[i],
-                                                                  wall_distance_[i], cross[i]);
+    const sst::Blending b =
+        wall_node_bc_[i] >= 0
+            ? sst::Blending{1.0, 1.0}
+            : sst::blending(c, sst_k_[i], sst_omega_[i], nu[i], wall_distance_[i], cross[i]);
     f1[i] = b.f1;
     f2[i] = b.f2;
     diff_k[i] = mu + sst::blend(b.f1, sst::sigma_k1, sst::sigma_k2) * eddy_viscosity_[i];

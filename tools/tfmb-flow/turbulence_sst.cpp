@@ -13,7 +13,11 @@ Constants constants(Variant variant) {
   // Menter 1994: gamma_i = beta_i / beta* - sigma_wi kappa^2 / sqrt(beta*)
   const double root = std::sqrt(beta_star);
   return {beta1 / beta_star - sigma_w1 * kappa * kappa / root,
-          beta2 / beta_star - sigma_w2 * kappa * kappa / root, 20.0, false, 1e-20, true};
+          beta2 / beta_star - sigma_w2 * kappa * kappa / root,
+          20.0,
+          false,
+          1e-20,
+          true};
 }
 
 Blending blending(const Constants& c, double k, double omega, double nu, double d, double cross) {
@@ -22,8 +26,8 @@ Blending blending(const Constants& c, double k, double omega, double nu, double 
   const double viscous = 500.0 * nu / (d * d * omega);
   // CD_komega per unit mass: 2 sigma_w2 / omega grad k . grad omega, floored (Menter 1994, eq. 14)
   const double cd = std::max(2.0 * sigma_w2 * cross / omega, c.cross_diffusion_floor);
-  const double arg1 =
-      std::min(std::max(root_k / (beta_star * omega * d), viscous), 4.0 * sigma_w2 * kk / (cd * d * d));
+  const double arg1 = std::min(std::max(root_k / (beta_star * omega * d), viscous),
+                               4.0 * sigma_w2 * kk / (cd * d * d));
   const double arg2 = std::max(2.0 * root_k / (beta_star * omega * d), viscous);
   return {std::tanh(std::pow(arg1, 4)), std::tanh(arg2 * arg2)};
 }
@@ -47,9 +51,11 @@ Source source(const Constants& c, double k, double omega, const Shear& s, double
   const double magnitude = c.vorticity ? s.vorticity : s.strain;
   // rho k / mu_t, the eddy viscosity's inverse time scale
   const double ratio = std::max(a1 * omega, magnitude * f2) / a1;
-  // P / (rho k): SST-2003 mu_t (S^2 - 2/3 div^2) - 2/3 rho k div; SST-V mu_t Omega^2 - 2/3 rho k div
-  const double shear_term = c.vorticity ? magnitude * magnitude
-                                        : magnitude * magnitude - 2.0 / 3.0 * s.divergence * s.divergence;
+  // P / (rho k): SST-2003 mu_t (S^2 - 2/3 div^2) - 2/3 rho k div; SST-V mu_t Omega^2 - 2/3 rho k
+  // div
+  const double shear_term = c.vorticity
+                                ? magnitude * magnitude
+                                : magnitude * magnitude - 2.0 / 3.0 * s.divergence * s.divergence;
   const double p = shear_term / ratio - 2.0 / 3.0 * s.divergence;
   const double cap = c.production_limit * beta_star * omega;
   const double p_limited = std::min(p, cap);
@@ -67,7 +73,9 @@ Source source(const Constants& c, double k, double omega, const Shear& s, double
   return out;
 }
 
-double freestream_k(double sound_speed) { return 9e-9 * sound_speed * sound_speed; }
+double freestream_k(double sound_speed) {
+  return 9e-9 * sound_speed * sound_speed;
+}
 
 double freestream_omega(double rho, double sound_speed, double mu) {
   return 1e-6 * rho * sound_speed * sound_speed / mu;

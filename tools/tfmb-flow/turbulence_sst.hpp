@@ -11,7 +11,8 @@
 //     AIAA 93-2906, as TMR recommends), gamma from beta/beta* - sigma_w kappa^2 / sqrt(beta*),
 //     CD_komega floored at 1e-20.
 // Both as TMR's "e" forms: the 2/3 rho k of the Boussinesq stress is left out of the mean-flow
-// momentum and energy equations, the production term is kept as defined. TMR's flat-plate reference results of CFL3D and
+// momentum and energy equations, the production term is kept as defined. TMR's flat-plate reference
+// results of CFL3D and
 //     FUN3D are for this form (refdata/flow/tmr_flatplate_sst_cf_cd_convergence.csv).
 //
 // The transport equations (TMR, conservation form)
@@ -36,7 +37,7 @@ inline constexpr double beta1 = 0.075, beta2 = 0.0828;
 
 struct Constants {
   double gamma1, gamma2;
-  double production_limit;  // P <= production_limit * beta* rho omega k (in the k equation)
+  double production_limit;      // P <= production_limit * beta* rho omega k (in the k equation)
   bool limit_omega_production;  // SST-2003: the limited P in the omega equation too
   double cross_diffusion_floor;
   bool vorticity;  // SST-V: Omega in mu_t and P; SST-2003: S
@@ -53,7 +54,9 @@ struct Blending {
 Blending blending(const Constants& c, double k, double omega, double nu, double d, double cross);
 
 // phi = F1 phi1 + (1 - F1) phi2
-inline double blend(double f1, double inner, double outer) { return f1 * inner + (1.0 - f1) * outer; }
+inline double blend(double f1, double inner, double outer) {
+  return f1 * inner + (1.0 - f1) * outer;
+}
 
 // Eddy viscosity [Pa s]: rho a1 k / max(a1 omega, shear F2), shear = S or Omega by variant;
 // zero for k <= 0.
@@ -62,9 +65,9 @@ double eddy_viscosity(double rho, double k, double omega, double shear, double f
 // The velocity gradient's invariants the model needs (planar; `hoop` = v/r adds the
 // axisymmetric azimuthal strain, 0 when planar).
 struct Shear {
-  double strain = 0.0;     // S = sqrt(2 S_ij S_ij) [1/s]
-  double vorticity = 0.0;  // Omega = sqrt(2 W_ij W_ij) [1/s]
-  double divergence = 0.0; // div u [1/s]
+  double strain = 0.0;      // S = sqrt(2 S_ij S_ij) [1/s]
+  double vorticity = 0.0;   // Omega = sqrt(2 W_ij W_ij) [1/s]
+  double divergence = 0.0;  // div u [1/s]
 };
 Shear shear(double dudx, double dudy, double dvdx, double dvdy, double hoop = 0.0);
 
