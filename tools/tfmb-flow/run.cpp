@@ -136,10 +136,6 @@ class FlowStage {
     require(!sst || o.time.time_step <= 0.0,
             "--time-step: the time-accurate mode is not available with --model " + o.model +
                 " yet (Spalart-Allmaras has it)");
-    require(!sst || o.turbulence_coupling.empty() || o.turbulence_coupling == "segregated",
-            "--turbulence-coupling " + o.turbulence_coupling +
-                ": k-omega SST is solved segregated; "
-                "coupled and auto are for Spalart-Allmaras");
     require(o.farfield_flux == "roe" || o.farfield_flux == "riemann",
             "--farfield-flux must be roe or riemann, got '" + o.farfield_flux + "'");
   }
@@ -215,6 +211,12 @@ class FlowStage {
                                    : o.turbulence_coupling == "auto"
                                        ? TurbulenceCoupling::automatic
                                        : TurbulenceCoupling::segregated;
+    if (sst_model && settings.turbulence_coupling != TurbulenceCoupling::segregated) {
+      // a case's options may be written for SA; the same case run under SST keeps them
+      log.info("--turbulence-coupling " + o.turbulence_coupling +
+               " applies to Spalart-Allmaras; k-omega SST solves k and omega segregated");
+      settings.turbulence_coupling = TurbulenceCoupling::segregated;
+    }
     p_ref = has_inflow ? o.stagnation_pressure : o.ambient_pressure;
     const double t_ref = has_inflow ? o.stagnation_temperature : t_inf;
     const double rho_ref = p_ref / (o.gas_constant * t_ref);

@@ -117,7 +117,8 @@ struct FlowConditions {
   double gamma = 1.4;                   // [1]
   double gas_constant = 287.05;         // [J/(kg K)]
   double prandtl = 0.72, turbulent_prandtl = 0.9;
-  std::string turbulence = "spalart_allmaras";  // spalart_allmaras | laminar | inviscid
+  // spalart_allmaras | k_omega_sst | k_omega_sst_v | laminar | inviscid
+  std::string turbulence = "spalart_allmaras";
   double reference_length = 0.0;                // [m] for the Reynolds number and y+ estimate
   double yplus_target = 0.0;                    // [1] 0: first_cell_height given
   double first_cell_height = 0.0;               // [m] resolved (given or from yplus_target)
