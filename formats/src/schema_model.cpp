@@ -145,8 +145,9 @@ Schema model_schema() {
   s.attributes.push_back(nattr("/conditions", "gas_constant", "J/(kg K)", "specific gas constant", 0.0));
   s.attributes.push_back(nattr("/conditions", "prandtl", "1", "laminar Prandtl number", 0.0));
   s.attributes.push_back(nattr("/conditions", "turbulent_prandtl", "1", "turbulent Prandtl number", 0.0));
-  s.attributes.push_back(sattr("/conditions", "turbulence", "flow model",
-                               {"spalart_allmaras", "k_omega_sst", "k_omega_sst_v", "laminar", "inviscid"}));
+  s.attributes.push_back(
+      sattr("/conditions", "turbulence", "flow model",
+            {"spalart_allmaras", "k_omega_sst", "k_omega_sst_v", "laminar", "inviscid"}));
   s.attributes.push_back(nattr("/conditions", "reference_length", "m",
                                "length for the Reynolds number of the y+ estimate (0: 0.1 m)", 0.0));
   s.attributes.push_back(nattr("/conditions", "yplus_target", "1", "y+ the first cell was sized for (0: height given)", 0.0));

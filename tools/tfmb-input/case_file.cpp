@@ -444,8 +444,9 @@ CaseSpec read_case(const std::filesystem::path& file, const std::vector<std::str
     f.gas_constant = k.number("gas_constant", 287.05, 1.0, 1e5, "J/(kg K)");
     f.prandtl = k.number("prandtl", 0.72, 0.01, 100.0, "1");
     f.turbulent_prandtl = k.number("turbulent_prandtl", 0.9, 0.01, 100.0, "1");
-    f.turbulence = k.text("turbulence", std::string("spalart_allmaras"),
-                          {"spalart_allmaras", "k_omega_sst", "k_omega_sst_v", "laminar", "inviscid"});
+    f.turbulence =
+        k.text("turbulence", std::string("spalart_allmaras"),
+               {"spalart_allmaras", "k_omega_sst", "k_omega_sst_v", "laminar", "inviscid"});
     f.reference_length = k.number("reference_length", 0.0, 0.0, 1e4, "m");
     const bool has_height = k.has("first_cell_height");
     const bool has_yplus = k.has("yplus_target");
