@@ -132,7 +132,8 @@ def main():
             gas_constant = float(c["gas_constant"])
         except KeyError as missing:
             fail(f"{args.flow}: /conditions: missing attribute {missing}")
-        model = "sa" if "fields/point/nu_tilde" in f else "euler or laminar"
+        model = ("sa" if "fields/point/nu_tilde" in f
+                 else "sst" if "fields/point/turbulent_kinetic_energy" in f else "euler or laminar")
         integ = f["integrals"].attrs if "integrals" in f else fail(f"{args.flow}: /integrals: missing group")
         mass_flow = float(integ["mass_flow"])
         thrust = float(integ["thrust_x"])
