@@ -1,7 +1,7 @@
 # config1 (seed Table 3): simple nozzle, one-way, no special joints (rigid joints). Each wall is
 # clamped upstream and hinged to the sidewalls at the flap junctions (cases/simple-nozzle/case.toml
 # and README.md: the seed names no supports; a 0.75 m cantilever cannot carry the pressure).
-CASE_TOML = cases/simple-nozzle/case.toml
+CASE_TOML = $(CASES_DIR)/simple-nozzle/case.toml
 ANALYSIS = oneway
 # Flow conditions of every configuration: the seed's NPR 5.423 and a stagnation temperature that
 # the Ti-6Al-4V strength tables cover (yield and ultimate strength to 810.9 K).

@@ -8,7 +8,7 @@
 # lower one (see cases/simple-nozzle/README.md). Contact stiffness 1e10 N/m for the 1 m wide pin
 # (line contact, of order E* times the width; the 1e8 default would let the 160 kN/m joint load
 # press 1.6 mm into a 0.2 mm clearance).
-CASE_TOML = cases/simple-nozzle/case.toml
+CASE_TOML = $(CASES_DIR)/simple-nozzle/case.toml
 ANALYSIS = twoway
 SET += --set analysis.kind=twoway \
        --set joint.upper_12.kind=revolute_clearance --set joint.upper_12.inner_radius=0.004 \

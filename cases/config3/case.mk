@@ -1,5 +1,5 @@
 # config3 (seed Table 3): realistic nozzle, one-way, every revolute joint restrained.
-CASE_TOML = cases/realistic-nozzle/case.toml
+CASE_TOML = $(CASES_DIR)/realistic-nozzle/case.toml
 ANALYSIS = oneway
 # Flow conditions of every configuration: the seed's NPR 5.423 and a stagnation temperature that
 # the Ti-6Al-4V strength tables cover (yield and ultimate strength to 810.9 K).

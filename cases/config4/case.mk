@@ -1,5 +1,5 @@
 # config4 (seed Table 3): realistic nozzle, two-way, every revolute joint restrained.
-CASE_TOML = cases/realistic-nozzle/case.toml
+CASE_TOML = $(CASES_DIR)/realistic-nozzle/case.toml
 ANALYSIS = twoway
 SET += --set analysis.kind=twoway
 # Flow conditions of every configuration: the seed's NPR 5.423 and a stagnation temperature that

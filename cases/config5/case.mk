@@ -1,7 +1,7 @@
 # config5 (seed Table 3): realistic nozzle, two-way, the throat joint of each half a revolute
 # joint with a torsional spring of 100 N m/rad instead of a restraint (see README.md for why the
 # lip joints stay restrained in a static analysis).
-CASE_TOML = cases/realistic-nozzle/case.toml
+CASE_TOML = $(CASES_DIR)/realistic-nozzle/case.toml
 ANALYSIS = twoway
 SET += --set analysis.kind=twoway \
        --set joint.upper_throat.kind=revolute_spring --set joint.upper_throat.stiffness=100 \

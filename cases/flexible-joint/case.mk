@@ -6,10 +6,12 @@
 ANALYSIS = structure
 BEAM_OPTS = --point-load beam_2:end:500,25
 SEED_EXAMPLES ?= $(BIN)/tfmb-beam-flexible-joint-seed
+# An installed tree's cases are read-only material: there the results go to the run folder.
+SEED_RESULTS ?= $(if $(TFMB_INSTALLED),$(RUN)/seed-examples,$(CASE_DIR)/results)
 
 structure: seed-examples
 seed-examples:
-	@mkdir -p $(RUN)/logs $(CASE_DIR)/results
-	$(SEED_EXAMPLES) -o $(CASE_DIR)/results 2> >(tee $(RUN)/logs/seed-examples.log >&2)
-	/usr/bin/python3 $(CASE_DIR)/plot_seed_examples.py $(CASE_DIR)/results
+	@mkdir -p $(RUN)/logs $(SEED_RESULTS)
+	$(SEED_EXAMPLES) -o $(SEED_RESULTS) 2> >(tee $(RUN)/logs/seed-examples.log >&2)
+	/usr/bin/python3 $(CASE_DIR)/plot_seed_examples.py $(SEED_RESULTS)
 .PHONY: seed-examples

@@ -14,4 +14,4 @@ FLOW_OPTS = --threads 2 --order 2 --first-order-start --stationary-tolerance 1e-
 # centreline readings with the band to the 45 % half-span row; drawn only for a run at the
 # data's NPR 8.91 (the npr-sweep's other NPRs have no measurements here).
 PLOT_REFERENCE = --walls '*_inner' --x-origin 0 --x-length 0.05752 --x-label 'x / l_e (throat at 0, l_e = 57.52 mm)' \
-  --reference 'refdata/flow/mason_tp1704_B1_upper_flap_p_npr8p91.csv:x_over_le:p_over_ptj_centreline:band=p_over_ptj_y_over_halfwidth_0p45:band-label=band to the 45 % half-span row:npr=8.91:label=TP-1704 B1 NPR 8.91, centreline'
+  --reference '$(TFMB_ROOT)refdata/flow/mason_tp1704_B1_upper_flap_p_npr8p91.csv:x_over_le:p_over_ptj_centreline:band=p_over_ptj_y_over_halfwidth_0p45:band-label=band to the 45 % half-span row:npr=8.91:label=TP-1704 B1 NPR 8.91, centreline'

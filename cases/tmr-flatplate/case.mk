@@ -13,5 +13,5 @@ FLOW_OPTS = --threads 2 --turbulence-coupling auto --cfl-max 1e7
 # Pictures: Cf(x) against the TMR's finest-grid (545 x 385) SA results of FUN3D and CFL3D
 # (refdata/flow/tmr_flatplate_sa_cf_vs_x_545x385.csv); x is in TMR grid units, L = 1 m.
 PLOT_REFERENCE = \
-  --reference 'refdata/flow/tmr_flatplate_sa_cf_vs_x_545x385.csv:x:cf:where=code=FUN3D:label=FUN3D SA 545x385 (TMR):plot=skin-friction' \
-  --reference 'refdata/flow/tmr_flatplate_sa_cf_vs_x_545x385.csv:x:cf:where=code=CFL3D:label=CFL3D SA 545x385 (TMR):plot=skin-friction'
+  --reference '$(TFMB_ROOT)refdata/flow/tmr_flatplate_sa_cf_vs_x_545x385.csv:x:cf:where=code=FUN3D:label=FUN3D SA 545x385 (TMR):plot=skin-friction' \
+  --reference '$(TFMB_ROOT)refdata/flow/tmr_flatplate_sa_cf_vs_x_545x385.csv:x:cf:where=code=CFL3D:label=CFL3D SA 545x385 (TMR):plot=skin-friction'

@@ -3,9 +3,11 @@
 #include "tfmb/formats/material_db.hpp"
 
 #include <cctype>
+#include <cstdlib>
 #include <sstream>
 
 #include "tfmb/common/h5.hpp"
+#include "tfmb/common/paths.hpp"
 #include "tfmb/formats/schema.hpp"
 
 namespace tfmb::formats {
@@ -91,6 +93,17 @@ MaterialDatabase read_material_db(const std::filesystem::path& file) {
     db.materials.push_back(std::move(m));
   }
   return db;
+}
+
+std::filesystem::path default_material_db() {
+  if (const char* from_environment = std::getenv("TFMB_MATERIAL_DB");
+      from_environment && *from_environment)
+    return from_environment;
+  // The installed database first: an installed executable must not reach back into the source
+  // tree it was built from (which may have moved on, or be gone).
+  if (auto installed = beside_executable(TFMB_INSTALLED_MATERIAL_DB); !installed.empty())
+    return installed;
+  return TFMB_SOURCE_MATERIAL_DB;
 }
 
 }  // namespace tfmb::formats

@@ -108,4 +108,24 @@ for k, (x_used, extra) in enumerate([(np.zeros(n), ()),                       # 
     got, want = next_tolerance(k, x_used, extra), expected(x_used, lo)
     assert abs(got - want) <= 5e-3 * want, (k, got, want)  # 3 significant digits
 assert "next_flow_tolerance" in open("tol.csv").readline()
+# Progress of a continuing step: iterations against the limit, the time an iteration takes from
+# the stage times in the log (the iterations after the first, which restart the flow), and the
+# time left at most. Iteration 1 took 100 s, 2 and 3 took 30 s: 17 left at 30 s each.
+def step_with_times(k, seconds):
+    write(f"p-raw-{k}.h5", H(np.zeros(n)) * k)
+    with open(f"p-times-{k}.txt", "w") as f:
+        f.write(f"flow {seconds - 1:.3f} 0\nbeam 1.000 0\n")
+    args = [couple, "--iteration", str(k), "--raw", f"p-raw-{k}.h5", "--state", "p.npz",
+            "--log", "p.csv", "-o", f"p-used-{k + 1}.h5", "--tolerance", "1e-12",
+            "--max-iterations", "20", "--stage-times", f"p-times-{k}.txt"]
+    if k > 1:
+        args += ["--used", f"p-used-{k}.h5"]
+    r = subprocess.run(args, capture_output=True, text=True)
+    assert r.returncode == 10, r.stderr
+    return r.stderr.splitlines()[-1]
+assert step_with_times(1, 100.0) == \
+    "tfmb-couple: progress: coupling 1/20 iterations, 1 min 40 s each, ETA <= 31 min 40 s"
+step_with_times(2, 30.0)
+line = step_with_times(3, 30.0)
+assert line == "tfmb-couple: progress: coupling 3/20 iterations, 30 s each, ETA <= 8 min 30 s", line
 print("coupling tests passed:", results)

@@ -15,6 +15,7 @@
 #include "tfmb-beam/static_solver.hpp"
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
+#include "tfmb/common/log.hpp"
 #include "tfmb/common/options.hpp"
 #include "tfmb/formats/files.hpp"
 #include "tfmb/formats/loads.hpp"
@@ -458,6 +459,12 @@ int run(const Options& options, const Logger& log) {
     if (analysis == "static") {
       StaticOptions so;
       so.initial_steps = options.load_steps > 0 ? options.load_steps : fm.analysis.load_steps;
+      // Load steps done, counted in the nominal step (cut-backs take fractions of one).
+      Progress progress(log, "static", static_cast<std::size_t>(std::max(so.initial_steps, 0)),
+                        {.unit = "load steps"});
+      so.on_step = [&](double load_factor, const State&) {
+        progress.update(static_cast<std::size_t>(std::lround(load_factor * so.initial_steps)));
+      };
       StaticResult r;
       if (options.arc_length) {
         ArcLengthOptions ao;
@@ -467,6 +474,7 @@ int run(const Options& options, const Logger& log) {
       } else {
         r = solve_static(*asmb, asmb->initial_state(), so);
       }
+      progress.finish();
       write_structure(options, fm, *asmb, r.state, analysis, r.converged, times, history, nullptr);
       log.summary("static: " + std::string(r.converged ? "converged" : "NOT converged") + " at load factor " +
                   std::to_string(r.load_factor) + ", " + std::to_string(r.steps) + " steps, " +
@@ -479,14 +487,22 @@ int run(const Options& options, const Logger& log) {
       dopt.end_time = options.end_time > 0 ? options.end_time : fm.analysis.end_time;
       dopt.time_step = options.time_step > 0 ? options.time_step : fm.analysis.time_step;
       dopt.rho_infinity = options.rho_infinity;
+      Progress progress(
+          log, "dynamic",
+          dopt.time_step > 0.0 && dopt.end_time > 0.0
+              ? static_cast<std::size_t>(std::ceil(dopt.end_time / dopt.time_step - 1e-9))
+              : 0,
+          {.unit = "time steps"});
       dopt.on_step = [&](double t, const State& s) {
         times.push_back(t);
         history.push_back(s.position);
+        progress.update(static_cast<std::size_t>(std::lround(t / dopt.time_step)));
       };
       DynamicSolver solver(*asmb, dopt);
       State initial = asmb->initial_state();
       if (!options.initial_state.empty()) continue_from(options.initial_state, fm, *asmb, initial, solver);
       const DynamicResult r = solver.run(initial);
+      progress.finish();
       write_structure(options, fm, *asmb, r.state, analysis, r.completed, times, history, nullptr, &solver.motion(),
                       r.time);
       log.summary("dynamic: " + std::to_string(r.steps) + " steps to t = " + std::to_string(r.time) + " s" +

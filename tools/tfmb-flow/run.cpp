@@ -1,5 +1,6 @@
 #include "run.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <numeric>
@@ -7,6 +8,7 @@
 #include "tfmb/common/cli.hpp"
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
+#include "tfmb/common/log.hpp"
 #include "tfmb/common/options.hpp"
 #include "tfmb/common/text.hpp"
 #include "tfmb/formats/files.hpp"
@@ -253,6 +255,11 @@ class FlowStage {
 
   // The solver and its start state.
   void start() {
+    // Each steady solve's progress (iterations against the limit, rate, time left) on stderr.
+    settings.on_iteration = [this](int iteration) {
+      if (progress_)
+        progress_->update(static_cast<std::size_t>(iteration));
+    };
     solver_ = std::make_unique<FlowSolver>(lm.mesh, lm.geometry, gas, bcs, settings);
     FlowSolver& solver = *solver_;
     if (o.restart_file) {
@@ -315,8 +322,22 @@ class FlowStage {
     } else if (o.first_order_start && settings.order >= 2 && !o.restart_file) {
       solve_with_first_order_start();
     } else {
-      result.report = solver_->solve();
+      result.report = solve_showing_progress(*solver_, "steady solve", settings.max_iterations);
     }
+  }
+
+  // solver.solve() with a progress line for it; a solve stops at its iteration limit at the
+  // latest, so the time left shown is an upper bound.
+  SolveReport solve_showing_progress(FlowSolver& solver, const std::string& label,
+                                     int max_iterations) {
+    Progress progress(log, label, static_cast<std::size_t>(std::max(max_iterations, 0)),
+                      {.unit = "iterations", .total_is_limit = true});
+    progress_ = &progress;
+    struct Reset {
+      Progress*& current;
+      ~Reset() { current = nullptr; }
+    } reset{progress_};
+    return solver.solve();
   }
 
   // Time-accurate run: the physical steps and their averages, a report of one row per physical
@@ -370,7 +391,7 @@ class FlowStage {
     // the second stage continues the first one's residual drop and starts at full inflow pressure
     solver.set_residual_reference(first.residual_reference);
     solver.set_inflow_ramp(0);
-    SolveReport second = solver.solve();
+    SolveReport second = solve_showing_progress(solver, "second order", settings.max_iterations);
     for (auto& rec : second.history) {
       rec.iteration += first.iterations;
       rec.wall_time += first.wall_time;
@@ -393,7 +414,8 @@ class FlowStage {
         first_order_start_settings(settings, o.first_order_start_drop);
     FlowSolver first_solver(lm.mesh, lm.geometry, gas, bcs, first_settings);
     first_solver.set_primitive(solver.primitive());
-    SolveReport first = first_solver.solve();
+    SolveReport first =
+        solve_showing_progress(first_solver, "first-order start", first_settings.max_iterations);
     log.info(std::string("first-order start: ") +
              (first.converged ? "converged" : "NOT converged") + " in " +
              std::to_string(first.iterations) + " iterations, residual drop " +
@@ -495,7 +517,8 @@ class FlowStage {
       // temperatures that tfmb-heat makes of it by at most 0.9 K (mean) and 0.12 K (through the
       // thickness), well inside what the emissivity's uncertainty moves them.
       solver.set_residual_drop(std::max(rep.residual_drop, settings.residual_drop));
-      const SolveReport probe = solver.solve();
+      const SolveReport probe =
+          solve_showing_progress(solver, "heat-transfer probe", settings.max_iterations);
       log.info("heat-transfer probe (walls " + text::format_number(heat_transfer_dt) +
                " K below adiabatic): " + (probe.converged ? "converged" : "NOT converged") +
                " in " + std::to_string(probe.iterations) + " iterations");
@@ -752,6 +775,7 @@ class FlowStage {
   double p_ref = 0.0;
   std::optional<formats::Flow> restart;
   std::unique_ptr<FlowSolver> solver_;
+  Progress* progress_ = nullptr;  // of the solve under way, if any
   RunResult result;
   std::vector<State> w_solver;  // the solution, before the heat-transfer probe changes it
   std::vector<WallTrace> traces;

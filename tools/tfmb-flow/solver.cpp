@@ -1816,6 +1816,8 @@ void FlowSolver::report_progress(SolveLoop& s) {
     }
     std::fprintf(stderr, "\n");
   }
+  if (settings_.on_iteration)
+    settings_.on_iteration(it);
 }
 
 // Give up after more than 20 returns to the last good state, or when the CFL has collapsed:

@@ -4,6 +4,7 @@
 // Jacobian solved by ILU(0)-preconditioned GMRES.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -130,6 +131,9 @@ struct SolverSettings {
   // of the full Roe flux, dissipation included (twice the assembly cost).
   bool exact_jacobian = false;
   int print_every = 0;  // residual line on stderr every N iterations (0: silent)
+  // Called after every iteration with its number, after any residual line (the tool's progress
+  // display); reads nothing of the solution and changes nothing.
+  std::function<void(int iteration)> on_iteration;
   bool viscous = false;
   ViscousModel viscosity;
   // Spalart-Allmaras RANS (needs viscous): the nu_tilde equation is solved segregated, one

@@ -3,13 +3,13 @@
 // Sample runs:
 //   tfmb-heat solidmesh.h5 flow.h5 model.h5 --db materials-db.h5 -o thermal.h5
 //   tfmb-heat solidmesh.h5 flow.h5 model.h5 -o thermal.h5 --environment-temperature 280 -v
-// The material database defaults to $TFMB_MATERIAL_DB when --db is not given.
+// The material database defaults to $TFMB_MATERIAL_DB when --db is not given, else to the
+// installed tree's or the source tree's data/materials-db.h5 (as tfmb-matmap).
+#include "tfmb-heat/run.hpp"
 #include "tfmb/common/cli.hpp"
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/options.hpp"
-#include "tfmb-heat/run.hpp"
-
-#include <cstdlib>
+#include "tfmb/formats/material_db.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -20,9 +20,8 @@ int main(int argc, char** argv) {
   tfmb::heat::Options options;
   tfmb::cli::CommonOptions common;
   tfmb::cli::add_common_options(app, common);
-  // Default database from the environment, looked up before declaring --db so --help shows it.
-  if (const char* from_environment = std::getenv("TFMB_MATERIAL_DB"))
-    options.material_db = from_environment;
+  // Looked up before declaring --db so that --help shows it.
+  options.material_db = tfmb::formats::default_material_db();
   tfmb::cli::OptionTable table(app);
   table.add("solidmesh", options.solid_mesh, "", "Solid mesh of the flap walls (tfmb/solidmesh)")
       ->required();
@@ -32,7 +31,8 @@ int main(int argc, char** argv) {
            "Analysis model (tfmb/model): flap materials, /thermal settings")
       ->required();
   table.add("--db", options.material_db, "",
-            "Material database (tfmb/material-db); default $TFMB_MATERIAL_DB");
+            "Material database (tfmb/material-db); default $TFMB_MATERIAL_DB, else the "
+            "installed or the source tree's data/materials-db.h5");
   table.add_output(options.output, "thermal file (tfmb/thermal)");
   table.add("--environment-temperature", options.environment_temperature, "K",
             "Radiation sink temperature of the outer walls", CLI::PositiveNumber);

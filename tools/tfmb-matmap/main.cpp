@@ -4,16 +4,12 @@
 // Sample runs:
 //   tfmb-matmap thermal.h5 model.h5 --db materials-db.h5 -o materials.h5
 //   tfmb-matmap thermal.h5 model.h5 --db materials-db.h5 --clamp -o materials.h5  # flag, exit 0
-#include <cstdlib>
 #include <iostream>
 
 #include "run.hpp"
 #include "tfmb/common/cli.hpp"
 #include "tfmb/common/options.hpp"
-
-#ifndef TFMB_DEFAULT_MATERIAL_DB
-#define TFMB_DEFAULT_MATERIAL_DB "materials-db.h5"
-#endif
+#include "tfmb/formats/material_db.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"Material properties of every beam element at its temperature (tfmb/materials).",
@@ -21,17 +17,15 @@ int main(int argc, char** argv) {
   tfmb::cli::CommonOptions common;
   tfmb::cli::add_common_options(app, common);
   tfmb::matmap::Options options;
-  // Default database: $TFMB_MATERIAL_DB (as tfmb-heat), else the repository's data/materials-db.h5.
-  const char* environment_db = std::getenv("TFMB_MATERIAL_DB");
-  options.database_file =
-      environment_db && *environment_db ? environment_db : TFMB_DEFAULT_MATERIAL_DB;
+  // Looked up before declaring --db so that --help shows it.
+  options.database_file = tfmb::formats::default_material_db();
   tfmb::cli::OptionTable table(app);
   table.add("thermal", options.thermal_file, "", "thermal.h5: per beam element temperatures")
       ->required();
   table.add("model", options.model_file, "", "model.h5: flap materials and sections")->required();
-  table.add(
-      "--db", options.database_file, "",
-      "material database (tfmb/material-db); default $TFMB_MATERIAL_DB, else data/materials-db.h5");
+  table.add("--db", options.database_file, "",
+            "material database (tfmb/material-db); default $TFMB_MATERIAL_DB, else the installed "
+            "share/tfmb/data/materials-db.h5, else the source tree's data/materials-db.h5");
   table.add_output(options.output, "materials file (tfmb/materials)");
   table.add_flag(
       "--clamp", options.clamp,

@@ -42,6 +42,11 @@ struct MaterialDatabase : ReadFrom {
 // ' ', '-', '_' ("Ti-6Al-4V", "ti 6al 4v"). The one rule by which names and aliases resolve.
 bool same_material_name(const std::string& a, const std::string& b);
 
+// The database a stage uses when given none: $TFMB_MATERIAL_DB if set; else the installed tree's
+// (<prefix>/share/tfmb/data/materials-db.h5, found from the running executable in <prefix>/bin);
+// else data/materials-db.h5 of the source tree the executable was built from (a build tree).
+std::filesystem::path default_material_db();
+
 // Reads and validates a material database (BadInput naming the file and the object on any problem).
 MaterialDatabase read_material_db(const std::filesystem::path& file);
 

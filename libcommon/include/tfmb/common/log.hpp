@@ -16,8 +16,9 @@ enum class Verbosity : int { quiet = 0, normal = 1, verbose = 2, debug = 3 };
 class Logger {
  public:
   explicit Logger(std::string tool_name, Verbosity verbosity = Verbosity::normal);
-  // For tests: write to any stream instead of std::cerr.
-  Logger(std::string tool_name, Verbosity verbosity, std::ostream& stream);
+  // For tests: write to any stream instead of std::cerr, taken for a terminal or not.
+  Logger(std::string tool_name, Verbosity verbosity, std::ostream& stream,
+         bool is_terminal = false);
 
   void info(const std::string& message) const;     // normal and above
   void verbose(const std::string& message) const;  // verbose and above
@@ -39,23 +40,55 @@ class Logger {
   bool is_terminal_;
 };
 
-// A progress bar on a terminal, or a line every 10 % when stderr is a file or pipe.
+// How a Progress reports.
+struct ProgressSettings {
+  std::string unit = "iterations";  // what is counted, plural
+  // The loop may stop before the total (an iteration limit of a solve that stops once
+  // converged): the time left is then an upper bound, written "ETA <= ...".
+  bool total_is_limit = false;
+  // Seconds between plain lines when stderr is not a terminal; negative: $TFMB_PROGRESS_INTERVAL
+  // if set (0: a line at every update), else 10 s.
+  double interval = -1.0;
+};
+
+// Progress of a loop with a known total or budget (iterations, load steps): done/total, rate
+// and the time left at that rate. On a terminal one line is redrawn in place (at most five times
+// a second) and erased by finish(); the cursor is left at its start, so that a line another part
+// of the program prints overwrites it. Otherwise (a log, a pipe) a plain line every `interval`:
+//   <tool>: progress: <label> <done>/<total> <unit>, <rate>, ETA [<=] <time left>
+// (rate "4.2/s", or "41 s each" below one per second)
+// Nothing when the logger is quiet or the total is 0.
 class Progress {
  public:
-  Progress(const Logger& logger, std::string label, std::size_t total);
+  Progress(const Logger& logger, std::string label, std::size_t total,
+           ProgressSettings settings = {});
   ~Progress();
+  Progress(const Progress&) = delete;
+  Progress& operator=(const Progress&) = delete;
+
   void update(std::size_t done);
+  // The same as update() at `seconds` after construction (tests; update() reads the clock).
+  void update_at(std::size_t done, double seconds);
   void finish();
+
+  // The line's text after "<tool>: " (without "progress: ") for `done` after `seconds`.
+  std::string text(std::size_t done, double seconds) const;
+  double interval() const { return interval_; }
 
  private:
   const Logger& logger_;
   std::string label_;
   std::size_t total_;
-  int last_decile_ = -1;
-  int last_width_ = -1;
+  ProgressSettings settings_;
+  double interval_;         // [s] between plain lines
+  double last_line_ = 0.0;  // [s] when the last plain line or terminal redraw was written
+  bool drawn_ = false;      // a terminal line is showing
   bool finished_ = false;
   std::chrono::steady_clock::time_point start_;
 };
+
+// "42 s", "7 min 26 s", "2 h 05 min": a duration [s] for people.
+std::string format_duration(double seconds);
 
 // Wall-clock seconds since construction.
 class Stopwatch {
