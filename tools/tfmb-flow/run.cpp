@@ -134,10 +134,6 @@ class FlowStage {
     require(o.model == "euler" || o.model == "laminar" || o.model == "sa" ||
                 o.model == "sa-noft2" || o.model == "sst" || o.model == "sst-v",
             "--model must be euler, laminar, sa, sa-noft2, sst or sst-v, got '" + o.model + "'");
-    const bool sst = o.model == "sst" || o.model == "sst-v";
-    require(!sst || o.time.time_step <= 0.0,
-            "--time-step: the time-accurate mode is not available with --model " + o.model +
-                " yet (Spalart-Allmaras has it)");
     require(o.farfield_flux == "roe" || o.farfield_flux == "riemann",
             "--farfield-flux must be roe or riemann, got '" + o.farfield_flux + "'");
   }
@@ -380,7 +376,10 @@ class FlowStage {
     // integrals, eddy viscosity and the heat-transfer probe start from the time-mean state
     solver.set_primitive(ta.mean_primitive);
     if (turbulent)
+    {
       solver.set_nu_tilde(ta.mean_nu_tilde);
+      solver.set_sst(ta.mean_k, ta.mean_omega);
+    }
   }
 
   // Second order without a restart: the first-order stage, then the second-order one from its

@@ -731,14 +731,11 @@ void FlowSolver::evaluate_residual(bool update_limiter) {
 void FlowSolver::begin_time_step(double dt) {
   if (!(dt > 0.0) || !std::isfinite(dt))
     throw std::invalid_argument("flow: physical time step must be positive");
-  if (sst())
-    throw std::invalid_argument(
-        "flow: the time-accurate mode is not available with k-omega SST yet");
   const bool first = time_u_n_.empty() || dt != time_dt_;
   time_u_nm1_ = std::move(time_u_n_);
   time_u_n_ = u_;
   time_nu_nm1_ = std::move(time_nu_n_);
-  time_nu_n_ = nu_tilde_;
+  time_nu_n_ = turbulence_snapshot();  // SA: nu_tilde; SST: k then omega
   time_dt_ = dt;
   // BDF1 on the first step (and after a change of dt), BDF2 after it
   time_a_ = first ? std::array<double, 3>{1.0, 1.0, 0.0} : std::array<double, 3>{1.5, 2.0, 0.5};

@@ -453,7 +453,7 @@ class FlowSolver {
   double time_dt_ = 0.0;
   std::array<double, 3> time_a_{};
   std::vector<State> time_u_n_, time_u_nm1_;
-  std::vector<double> time_nu_n_, time_nu_nm1_;
+  std::vector<double> time_nu_n_, time_nu_nm1_;  // SST: k then omega (turbulence_snapshot())
 };
 
 }  // namespace tfmb::flow

@@ -216,6 +216,21 @@ double FlowSolver::sst_step(double cfl) {
       rw += volume * src.omega;
       dk -= volume * src.k_slope;
       dw -= volume * src.omega_slope;
+      if (time_dt_ > 0.0) {
+        // physical time derivative by the backward difference of begin_time_step()
+        const double* k_n = time_nu_n_.data();
+        const double* w_n = k_n + n;
+        double dk_dt = time_a_[0] * sst_k_[i] - time_a_[1] * k_n[i];
+        double dw_dt = time_a_[0] * sst_omega_[i] - time_a_[1] * w_n[i];
+        if (time_a_[2] != 0.0) {
+          dk_dt += time_a_[2] * time_nu_nm1_[i];
+          dw_dt += time_a_[2] * time_nu_nm1_[n + i];
+        }
+        rk -= volume * dk_dt / time_dt_;
+        rw -= volume * dw_dt / time_dt_;
+        dk += physical_time_diagonal(i);
+        dw += physical_time_diagonal(i);
+      }
     }
     rhs_k[i] = rk;
     rhs_w[i] = rw;

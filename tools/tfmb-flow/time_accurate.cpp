@@ -10,6 +10,23 @@ namespace tfmb::flow {
 
 namespace {
 
+// sum += value, element by element (sum sized on first use; nothing for an empty value)
+void accumulate(std::vector<double>& sum, const std::vector<double>& value) {
+  if (value.empty())
+    return;
+  if (sum.empty())
+    sum.assign(value.size(), 0.0);
+  for (std::size_t i = 0; i < value.size(); ++i)
+    sum[i] += value[i];
+}
+
+std::vector<double> scaled(const std::vector<double>& v, double factor) {
+  std::vector<double> out(v.size());
+  for (std::size_t i = 0; i < v.size(); ++i)
+    out[i] = v[i] * factor;
+  return out;
+}
+
 // Sums of the wall traces of one curve over some steps. The pressure is summed as its deviation
 // from the first sample (shifted data): the variance as E[p^2] - E[p]^2 of the raw values loses
 // every digit of a fluctuation below 1e-8 p in the cancellation.
@@ -63,7 +80,7 @@ TimeAccurateResult run_time_accurate(FlowSolver& solver, const TimeAccurateSetti
   const int window = s.time_steps - s.statistics_start + 1;
   const int second_half_start = s.statistics_start + window / 2;
   std::vector<State> sum_w;
-  std::vector<double> sum_nu;
+  std::vector<double> sum_nu, sum_k, sum_omega;  // turbulence variables (SA or SST)
   std::vector<TraceSums> sums(wall_curves.size());
   std::vector<WallTrace> last_traces(wall_curves.size());
   double cfl = s.cfl_start;
@@ -100,13 +117,9 @@ TimeAccurateResult run_time_accurate(FlowSolver& solver, const TimeAccurateSetti
         for (int v = 0; v < 4; ++v)
           sum_w[i][v] += w[i][v];
       }
-      const auto nu = solver.nu_tilde();
-      if (!nu.empty()) {
-        if (sum_nu.empty())
-          sum_nu.assign(nu.size(), 0.0);
-        for (std::size_t i = 0; i < nu.size(); ++i)
-          sum_nu[i] += nu[i];
-      }
+      accumulate(sum_nu, solver.nu_tilde());
+      accumulate(sum_k, solver.sst_k());
+      accumulate(sum_omega, solver.sst_omega());
       last_traces = solver.wall_traces(wall_curves);
       for (std::size_t c = 0; c < wall_curves.size(); ++c)
         sums[c].add(last_traces[c], second_half);
@@ -128,9 +141,9 @@ TimeAccurateResult run_time_accurate(FlowSolver& solver, const TimeAccurateSetti
     for (int v = 0; v < 4; ++v)
       result.mean_primitive[i][v] = sum_w[i][v] * inv;
   }
-  result.mean_nu_tilde.resize(sum_nu.size());
-  for (std::size_t i = 0; i < sum_nu.size(); ++i)
-    result.mean_nu_tilde[i] = sum_nu[i] * inv;
+  result.mean_nu_tilde = scaled(sum_nu, inv);
+  result.mean_k = scaled(sum_k, inv);
+  result.mean_omega = scaled(sum_omega, inv);
   for (std::size_t c = 0; c < wall_curves.size(); ++c) {
     const TraceSums& t = sums[c];
     WallTrace mean = last_traces[c];  // nodes and coordinates

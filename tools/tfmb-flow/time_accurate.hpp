@@ -40,6 +40,7 @@ struct TimeAccurateResult {
   // time averages over the statistics window, in the numbering of the input mesh
   std::vector<State> mean_primitive;
   std::vector<double> mean_nu_tilde;              // empty without SA
+  std::vector<double> mean_k, mean_omega;         // empty without SST
   std::vector<WallTrace> mean_traces;             // per wall curve given
   std::vector<std::vector<double>> pressure_rms;  // per wall curve, per trace point [Pa]
   int averaged_steps = 0;
