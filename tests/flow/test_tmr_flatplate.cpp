@@ -211,10 +211,12 @@ TEST(TmrFlatPlate, SstTimeAccurateKeepsTheSteadyState) {
     if (!fs::exists(bin_dir / tool))
       GTEST_SKIP() << tool << " not built";
   }
-  const fs::path dir = fs::temp_directory_path() / ("tfmb_tmr_sst_time_" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("tfmb_tmr_sst_time_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const std::string quiet = " -q 2>>" + (dir / "log.txt").string();
-  ASSERT_EQ(run((bin_dir / "tfmb-input").string() + " " + (source_dir / "cases/tmr-flatplate/case.toml").string() +
+  ASSERT_EQ(run((bin_dir / "tfmb-input").string() + " " +
+                (source_dir / "cases/tmr-flatplate/case.toml").string() +
                 " --set mesh.cells_upstream=12 --set mesh.cells_along=56 --set mesh.cells_across=48"
                 " --set flow.first_cell_height=4e-6 --set mesh.leading_edge_spacing=0.004 -o " +
                 (dir / "model.h5").string() + quiet),
@@ -222,12 +224,14 @@ TEST(TmrFlatPlate, SstTimeAccurateKeepsTheSteadyState) {
   ASSERT_EQ(run((bin_dir / "tfmb-mesh").string() + " flow " + (dir / "model.h5").string() + " -o " +
                 (dir / "flowmesh.h5").string() + " 2>>" + (dir / "log.txt").string()),
             0);
-  const std::string common = (bin_dir / "tfmb-flow").string() + " " + (dir / "flowmesh.h5").string() +
-                             " --p0 117686.646 --T0 302.4 --ambient-pressure 114450 --ambient-temperature 300"
-                             " --freestream-mach 0.2 --model sst-v --threads 1 --heat-transfer-dt 0";
+  const std::string common =
+      (bin_dir / "tfmb-flow").string() + " " + (dir / "flowmesh.h5").string() +
+      " --p0 117686.646 --T0 302.4 --ambient-pressure 114450 --ambient-temperature 300"
+      " --freestream-mach 0.2 --model sst-v --threads 1 --heat-transfer-dt 0";
   ASSERT_EQ(run(common + " --max-iterations 1500 -o " + (dir / "steady.h5").string() + quiet), 0);
   ASSERT_EQ(run(common + " --restart " + (dir / "steady.h5").string() +
-                " --time-step 1e-4 --time-steps 10 --statistics-start 1 -o " + (dir / "mean.h5").string() + quiet),
+                " --time-step 1e-4 --time-steps 10 --statistics-start 1 -o " +
+                (dir / "mean.h5").string() + quiet),
             0);
   const tfmb::h5::Reader steady(dir / "steady.h5"), mean(dir / "mean.h5");
   EXPECT_EQ(mean.attr_i64("/convergence", "time_average"), 1);
@@ -243,8 +247,10 @@ TEST(TmrFlatPlate, SstTimeAccurateKeepsTheSteadyState) {
   const double shear = largest_change("/walls/plate/wall_shear");
   const double k = largest_change("/fields/point/turbulent_kinetic_energy");
   const double omega = largest_change("/fields/point/specific_dissipation_rate");
-  std::printf("SST-V steady state under 10 time steps: largest change of wall shear %.2e, k %.2e, omega %.2e\n",
-              shear, k, omega);
+  std::printf(
+      "SST-V steady state under 10 time steps: largest change of wall shear %.2e, k %.2e, omega "
+      "%.2e\n",
+      shear, k, omega);
   EXPECT_LT(shear, 1e-5);
   EXPECT_LT(k, 1e-4);
   EXPECT_LT(omega, 1e-4);

@@ -375,8 +375,7 @@ class FlowStage {
     }
     // integrals, eddy viscosity and the heat-transfer probe start from the time-mean state
     solver.set_primitive(ta.mean_primitive);
-    if (turbulent)
-    {
+    if (turbulent) {
       solver.set_nu_tilde(ta.mean_nu_tilde);
       solver.set_sst(ta.mean_k, ta.mean_omega);
     }
