@@ -42,9 +42,9 @@ expect_missing "tfmb-strain" "$bin/tfmb-strain" "$missing" "$missing" -o "$out"
 expect_missing "tfmb-check" "$bin/tfmb-check" "$missing"
 # every workflow script answers --help with exit 0 and some text; those that take arguments
 # refuse none with 2 (usage). install-deps and flow-benchmarks do their work without arguments.
-for script in "$src"/workflows/*; do
+for script in "$src"/workflows/* "$src"/workflows/adapters/*; do
   [ -f "$script" ] && [ -x "$script" ] || continue
-  name=$(basename "$script")
+  name=${script#"$src"/workflows/}
   rc=0; "$script" --help > "$scratch/help" 2>&1 || rc=$?
   [ "$rc" -eq 0 ] && [ -s "$scratch/help" ] || { echo "FAIL workflows/$name --help: exit $rc"; failed=1; }
   case $name in install-deps | flow-benchmarks) continue ;; esac
@@ -52,6 +52,8 @@ for script in "$src"/workflows/*; do
   [ "$rc" -eq 2 ] || { echo "FAIL workflows/$name without arguments: exit $rc, expected 2"; failed=1; }
 done
 expect_missing "workflows/case-summary" "$src/workflows/case-summary" "$scratch/no-such-file.h5"
+expect_missing "workflows/adapters/calculix-beam" "$src/workflows/adapters/calculix-beam" "$missing" -o "$out"
+expect_missing "workflows/adapters/compare-structure" "$src/workflows/adapters/compare-structure" "$missing" "$missing"
 # a run folder with a space is refused before anything runs (make split it and created a stray
 # folder named after its first word)
 rc=0; make -s -C "$src" -f Makefile.cases RUN="$scratch/two words" BIN="$bin" model > "$scratch/make" 2>&1 || rc=$?
