@@ -1,12 +1,8 @@
 #include "tfmb/formats/files.hpp"
 
-#include <cerrno>
 #include <cstdlib>
-#include <cstring>
 #include <ctime>
-#include <fstream>
 #include <functional>
-#include <sstream>
 
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/hash.hpp"
@@ -123,126 +119,6 @@ Mesh read_mesh(const h5::Reader& file) {
     mesh.boundaries[name] = std::move(boundary);
   }
   return mesh;
-}
-
-namespace {
-// File names and dataset names are free text (a run directory named "R&D", a field written by
-// an external tool): copied as they stand, `&` or `<` made the sidecar ill-formed XML, which
-// every XML parser (meshio's, ParaView's) refuses. Escaped, the parser hands back the exact name.
-std::string xml_escape(const std::string& text) {
-  std::string escaped;
-  escaped.reserve(text.size());
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        escaped += "&amp;";
-        break;
-      case '<':
-        escaped += "&lt;";
-        break;
-      case '>':
-        escaped += "&gt;";
-        break;
-      case '"':
-        escaped += "&quot;";
-        break;
-      case '\'':
-        escaped += "&apos;";
-        break;
-      default:
-        escaped += c;
-    }
-  }
-  return escaped;
-}
-}  // namespace
-
-std::filesystem::path write_xdmf_sidecar(const std::filesystem::path& h5_file) {
-  h5::Reader file(h5_file);
-  std::filesystem::path sidecar = h5_file;
-  sidecar.replace_extension(".xdmf");
-  const std::string data_file = xml_escape(h5_file.filename().string());
-  auto item = [&](const std::string& path, const std::string& dimensions, const char* type) {
-    return "        <DataItem Dimensions=\"" + dimensions + "\" NumberType=\"" + type +
-           "\" Precision=\"8\" Format=\"HDF\">" + data_file + ":" + xml_escape(path) +
-           "</DataItem>\n";
-  };
-  std::ostringstream xml;
-  xml << "<?xml version=\"1.0\" ?>\n"
-      << "<Xdmf Version=\"3.0\">\n  <Domain>\n"
-      << "    <Grid Name=\"" << xml_escape(h5_file.stem().string()) << "\" GridType=\"Uniform\">\n";
-  std::size_t point_count = 0, cells = 0;
-  if (file.exists("/mesh/points")) {
-    // A 2D mesh of triangles and quads (flowmesh, solidmesh, flow, thermal).
-    const auto points = file.info("/mesh/points");
-    const auto triangles = file.info("/mesh/cells/triangle");
-    const auto quads = file.info("/mesh/cells/quad");
-    const auto topology = file.info("/mesh/topology_xdmf_mixed");
-    point_count = points.shape.at(0);
-    cells = triangles.shape.at(0) + quads.shape.at(0);
-    xml << "      <Topology TopologyType=\"Mixed\" NumberOfElements=\"" << cells << "\">\n"
-        << item("/mesh/topology_xdmf_mixed", std::to_string(topology.shape.at(0)), "Int")
-        << "      </Topology>\n      <Geometry GeometryType=\"XY\">\n"
-        << item("/mesh/points", std::to_string(point_count) + " 2", "Float")
-        << "      </Geometry>\n";
-  } else {
-    // The beams as polylines of display segments (structure).
-    const auto points = file.info("/beam/points");
-    const auto segments = file.info("/beam/segments");
-    point_count = points.shape.at(0);
-    cells = segments.shape.at(0);
-    xml << "      <Topology TopologyType=\"Polyline\" NodesPerElement=\"2\" NumberOfElements=\""
-        << cells << "\">\n"
-        << item("/beam/segments", std::to_string(cells) + " 2", "Int")
-        << "      </Topology>\n      <Geometry GeometryType=\"XYZ\">\n"
-        << item("/beam/points", std::to_string(point_count) + " 3", "Float")
-        << "      </Geometry>\n";
-  }
-  auto add_fields = [&](const std::string& group, const char* center, std::size_t expected_rows) {
-    if (!file.is_group(group)) return;
-    for (const auto& name : file.children(group)) {
-      const std::string path = group + "/" + name;
-      if (!file.is_dataset(path)) continue;
-      const auto info = file.info(path);
-      if (info.dtype != h5::DType::float64 || info.shape.empty() ||
-          info.shape[0] != expected_rows || info.shape.size() > 2) {
-        continue;  // not displayable on this grid (e.g. a history)
-      }
-      const std::size_t components = info.shape.size() == 2 ? info.shape[1] : 1;
-      const char* type = components == 1 ? "Scalar" : components == 3 ? "Vector" : "Matrix";
-      xml << "      <Attribute Name=\"" << xml_escape(name) << "\" AttributeType=\"" << type
-          << "\" Center=\"" << center << "\">\n        <DataItem Dimensions=\"" << info.shape[0];
-      if (info.shape.size() == 2) xml << " " << components;
-      xml << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << data_file << ":"
-          << xml_escape(path) << "</DataItem>\n      </Attribute>\n";
-    }
-  };
-  add_fields("/fields/point", "Node", point_count);
-  add_fields("/fields/cell", "Cell", cells);
-  xml << "    </Grid>\n  </Domain>\n</Xdmf>\n";
-
-  std::filesystem::path tmp = sidecar;
-  tmp += ".tmp";
-  errno = 0;
-  std::ofstream out(tmp);
-  out << xml.str();
-  // A full disk shows when the buffer is written out, at close: checked there, and the partial
-  // temporary file removed.
-  out.close();
-  std::error_code ec;
-  if (!out) {
-    const std::string reason = errno ? std::strerror(errno) : "write failed";
-    std::filesystem::remove(tmp, ec);
-    throw InternalError(sidecar.string() + ": cannot write the XDMF sidecar (" + reason + ")");
-  }
-  std::filesystem::rename(tmp, sidecar, ec);
-  if (ec) {
-    const std::string reason = ec.message();
-    std::filesystem::remove(tmp, ec);
-    throw InternalError(sidecar.string() + ": cannot rename from " + tmp.string() + " (" + reason +
-                        ")");
-  }
-  return sidecar;
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -34,6 +34,9 @@ void write_loads(const std::filesystem::path& file, const Loads& loads,
   for (const LoadsFlap& f : loads.flaps) {
     const std::string g = "/flaps/" + f.name;
     w.write(g + "/s", f.s, "m", "arc length of each beam node");
+    if (!f.position.empty())
+      w.write(g + "/position", detail::rows(f.position), "m",
+              "reference position x, y of each beam node");
     w.write(g + "/distributed_force", detail::rows(f.distributed_force), "N/m",
             "force per unit beam length at each node, over the flap width");
     w.write(g + "/distributed_moment", detail::rows(f.distributed_moment), "N",
@@ -52,6 +55,7 @@ void write_loads(const std::filesystem::path& file, const Loads& loads,
   }
   write_provenance(w, provenance);
   w.commit();
+  write_xdmf_sidecar(file);
 }
 
 Loads read_loads(const std::filesystem::path& file) {
@@ -76,6 +80,8 @@ Loads read_loads(const std::filesystem::path& file) {
     for (std::size_t i = 1; i < n; ++i)
       if (!(f.s[i] >= f.s[i - 1]))
         r.fail(g + "/s", "arc length decreases at node " + std::to_string(i));
+    if (r.exists(g + "/position"))
+      f.position = detail::read_rows<2>(r, g + "/position", n);
     f.distributed_force = detail::read_rows<3>(r, g + "/distributed_force", n);
     f.distributed_moment = detail::read_rows<3>(r, g + "/distributed_moment", n);
     f.nodal_force = detail::read_rows<3>(r, g + "/nodal_force", n);

@@ -4,8 +4,8 @@
 namespace tfmb::formats::detail {
 
 Schema loads_schema() {
-  Schema s{"loads", "tfmb/loads", 1, 1, "distributed and nodal beam loads from the wall traces",
-           false, {}, {}};
+  Schema s{"loads", "tfmb/loads", 1, 2, "distributed and nodal beam loads from the wall traces",
+           false,   {},           {}};
   add_root(s, true);
   s.attributes.push_back(sattr("/", "method", "mapping method", {"linear", "conservative"}));
   s.attributes.push_back(sattr("/", "load_basis",
@@ -26,6 +26,10 @@ Schema loads_schema() {
                                "moment of the nodal forces plus the nodal moments about the origin",
                                std::nullopt, std::nullopt, true, AttrType::float64_vector));
   s.datasets.push_back(f64("/flaps/*/s", {"nn"}, "m", "arc length of each beam node"));
+  s.datasets.push_back(f64("/flaps/*/position", {"nn", "2"}, "m",
+                           "reference position x, y of each beam node (1.2; the sidecar draws "
+                           "the flap's loads along it)",
+                           false));
   s.datasets.push_back(f64("/flaps/*/distributed_force", {"nn", "3"}, "N/m",
                            "force per unit beam length at each node (linear between nodes), over "
                            "the flap width"));

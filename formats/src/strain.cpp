@@ -84,6 +84,7 @@ void write_strain(const std::filesystem::path& file, const Strain& strain,
   w.write("/worst/margin_total", margin, "1", "");
   write_provenance(w, provenance);
   w.commit();
+  write_xdmf_sidecar(file);
 }
 
 Strain read_strain(const std::filesystem::path& file) {

@@ -25,6 +25,7 @@ void write_walldisp(const std::filesystem::path& file, const WallDisplacements& 
   }
   write_provenance(w, provenance);
   w.commit();
+  write_xdmf_sidecar(file);
 }
 
 WallDisplacements read_walldisp(const std::filesystem::path& file) {

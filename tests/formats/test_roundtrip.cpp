@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "test_support.hpp"
+#include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
 #include "tfmb/formats/files.hpp"
 #include "tfmb/formats/schema.hpp"
@@ -107,7 +108,8 @@ TEST(FormatsMesh, TypedWritesAreByteIdentical) {
   EXPECT_TRUE(test::read_bytes(dir / "a.h5") == test::read_bytes(dir / "b.h5"));
 }
 
-// meshio (Debian's python3-meshio) must read every sidecar without project code.
+// meshio (Debian's python3-meshio) must read every mesh sidecar without project code: the
+// sidecar itself, or its .meshio.xdmf variant where the sidecar has more than one grid.
 TEST(FormatsMesh, MeshioReadsEverySidecar) {
   if (std::system("/usr/bin/python3 -c 'import meshio' 2>/dev/null") != 0) {
     GTEST_SKIP() << "python3-meshio not installed";
@@ -117,7 +119,9 @@ TEST(FormatsMesh, MeshioReadsEverySidecar) {
     if (!schema.mesh_bearing) continue;
     const auto file = dir / (schema.kind + ".h5");
     write_document(example_document(schema), file);
-    const auto sidecar = write_xdmf_sidecar(file);
+    auto sidecar = write_xdmf_sidecar(file);
+    if (std::filesystem::exists(meshio_sidecar_path(file)))
+      sidecar = meshio_sidecar_path(file);
     const std::string command = "/usr/bin/python3 -c \"import meshio,sys; m = meshio.read('" +
                                 sidecar.string() +
                                 "'); sys.exit(0 if len(m.points) == 4 and sum(len(c.data) for c "
@@ -162,6 +166,72 @@ TEST(FormatsMesh, SidecarOfAFileNamedWithXmlSpecialCharactersParses) {
         "sys.exit(0 if len(m.points) == 5 else 1)\"";
     EXPECT_EQ(std::system(read.c_str()), 0) << "meshio";
   }
+}
+
+// The structure file's sectional strains and forces mix units across their six columns: the
+// sidecar shows each column as its own scalar named with its unit, a hyperslab of the same
+// dataset (column k of (E,6)); meshio gets the whole datasets from the .meshio.xdmf variant.
+TEST(FormatsSidecar, StructureComponentsAreNamedScalarsWithUnits) {
+  const auto dir = test::scratch_dir();
+  const auto file = dir / "structure.h5";
+  write_document(example_document(*find_schema("structure")), file);
+  const auto sidecar = write_xdmf_sidecar(file);
+  const std::string text = test::read_bytes(sidecar);
+  const std::size_t rows = h5::Reader(file).info("/beam/segments").shape.at(0);
+  const std::string e = std::to_string(rows);
+  EXPECT_NE(text.find("Name=\"bending_moment [N m]\""), std::string::npos) << text;
+  EXPECT_NE(text.find("Name=\"axial_strain [1]\""), std::string::npos);
+  EXPECT_NE(text.find("Name=\"curvature [1/m]\""), std::string::npos);
+  EXPECT_NE(text.find("structure.h5:/fields/cell/sectional_force|0 5:1 1:" + e + " 1:" + e + " 6"),
+            std::string::npos)
+      << "bending moment (in plane) is column 5";
+  EXPECT_EQ(text.find("Name=\"sectional_force\""), std::string::npos) << "shown whole";
+  const std::string meshio = test::read_bytes(meshio_sidecar_path(file));
+  EXPECT_NE(meshio.find("Name=\"sectional_force\""), std::string::npos);
+  EXPECT_EQ(meshio.find('|'), std::string::npos);
+}
+
+// Loads (1.2, with positions), strain and walldisp files get a sidecar with a polyline per flap
+// or wall; a flow file's wall traces are polylines beside its mesh. Kinds with nothing to draw
+// get none.
+TEST(FormatsSidecar, LineKindsGetPolylineGrids) {
+  const auto dir = test::scratch_dir();
+  for (const std::string kind : {"loads", "strain", "walldisp", "flow"}) {
+    SCOPED_TRACE(kind);
+    const auto file = dir / (kind + ".h5");
+    write_document(example_document(*find_schema(kind)), file);
+    const auto sidecar = write_xdmf_sidecar(file);
+    ASSERT_FALSE(sidecar.empty());
+    const std::string text = test::read_bytes(sidecar);
+    EXPECT_NE(text.find("TopologyType=\"Polyline\""), std::string::npos) << text;
+    EXPECT_NE(text.find("<Grid Name=\"sample\""), std::string::npos);
+  }
+  EXPECT_NE(test::read_bytes(dir / "flow.xdmf").find("CollectionType=\"Spatial\""),
+            std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(dir / "flow.meshio.xdmf"));
+  const auto model = dir / "model.h5";
+  write_document(example_document(*find_schema("model")), model);
+  EXPECT_TRUE(write_xdmf_sidecar(model).empty());
+  EXPECT_FALSE(std::filesystem::exists(dir / "model.xdmf"));
+}
+
+// A temporal collection over iterates in sub-folders references each file relative to the
+// collection, at times 1, 2, ...
+TEST(FormatsSidecar, SeriesIsATemporalCollectionOfTheIterates) {
+  const auto dir = test::scratch_dir();
+  std::vector<std::filesystem::path> files;
+  for (const char* iterate : {"iter-001", "iter-002"}) {
+    std::filesystem::create_directories(dir / iterate);
+    files.push_back(dir / iterate / "structure.h5");
+    write_document(example_document(*find_schema("structure")), files.back());
+  }
+  const auto series = write_xdmf_series(dir / "structure-iterations.xdmf", files);
+  const std::string text = test::read_bytes(series);
+  EXPECT_NE(text.find("GridType=\"Collection\" CollectionType=\"Temporal\""), std::string::npos);
+  EXPECT_NE(text.find("<Time Value=\"1\"/>"), std::string::npos);
+  EXPECT_NE(text.find("<Time Value=\"2\"/>"), std::string::npos);
+  EXPECT_NE(text.find(">iter-002/structure.h5:/beam/points<"), std::string::npos) << text;
+  EXPECT_THROW(write_xdmf_series(dir / "none.xdmf", {}), Error);
 }
 
 }  // namespace

@@ -101,11 +101,26 @@ int run(const Options& options, std::ostream& out, std::ostream& err) {
     if (!schema) throw UsageError("unknown kind '" + options.example_kind + "' (see --list)");
     if (options.output.empty()) throw UsageError("--example needs -o/--output");
     formats::write_document(formats::example_document(*schema), options.output);
-    if (schema->mesh_bearing) formats::write_xdmf_sidecar(options.output);
+    formats::write_xdmf_sidecar(options.output);
     return 0;
   }
   if (options.files.empty()) throw UsageError("no file given (see --help)");
-  return check_files(options, out, err);
+  if (options.series && options.output.empty())
+    throw UsageError("--series needs -o/--output");
+  // A sidecar or series is written only over files that pass their checks, so that ParaView is
+  // never pointed at a file the toolchain itself would refuse.
+  const int status = check_files(options, out, err);
+  if (status != 0)
+    return status;
+  if (options.sidecar) {
+    for (const auto& file : options.files) {
+      if (formats::write_xdmf_sidecar(file).empty())
+        err << file.string() << ": no sidecar (nothing to draw in this kind)\n";
+    }
+  }
+  if (options.series)
+    formats::write_xdmf_series(options.output, options.files);
+  return 0;
 }
 
 }  // namespace tfmb::check

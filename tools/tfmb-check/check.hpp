@@ -12,7 +12,9 @@ struct Options {
   std::vector<std::filesystem::path> files;
   std::string spec_kind;          // --spec: print the Markdown table of a kind
   std::string example_kind;       // --example: write a small valid file of a kind
-  std::filesystem::path output;   // with --example
+  std::filesystem::path output;   // with --example and --series
+  bool sidecar = false;           // --sidecar: (re)write each valid file's XDMF sidecar
+  bool series = false;            // --series: a temporal XDMF collection over the files (-o)
   bool list_kinds = false;        // --list
   bool summary = true;            // --no-summary turns the human summary off
 };
@@ -21,7 +23,8 @@ struct Options {
 // Returns 0 if every file is valid, 3 otherwise.
 int check_files(const Options& options, std::ostream& out, std::ostream& err);
 
-// Runs the selected action (check, --spec, --example, --list); returns the exit code.
+// Runs the selected action (check, --spec, --example, --list, --sidecar, --series); returns the
+// exit code.
 int run(const Options& options, std::ostream& out, std::ostream& err);
 
 }  // namespace tfmb::check

@@ -188,6 +188,7 @@ void write_loads(const std::filesystem::path& file, const LoadsFile& loads,
     f.width = flap.width;
     f.traces = flap.traces;
     f.s = l.arc_length;
+    f.position = flap.nodes;
     for (const Vec2& q : l.distributed_force)
       f.distributed_force.push_back(in_3d(q));
     for (double m : l.distributed_moment)

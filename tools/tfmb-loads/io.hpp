@@ -70,6 +70,7 @@ struct LoadsFile {
     std::string name;
     double width = 0.0;
     std::vector<std::string> traces;
+    std::vector<Vec2> nodes;  // beam node reference positions [m]
     FlapLoads loads;
   };
   std::vector<Flap> flaps;

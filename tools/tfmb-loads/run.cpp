@@ -260,6 +260,7 @@ ForcesResult run_forces_unchecked(const ForcesOptions& options, const Logger& lo
       }
       check_coverage(beam, flap, side, side_traces, options.coverage_tolerance, source);
     }
+    entry.nodes = beam.nodes();
     entry.loads = map_loads(options.method, beam, flap_traces, flap.width);
     const FlapLoads& l = entry.loads;
     const double scale_f = std::max(l.traces.force.norm(), 1e-300);

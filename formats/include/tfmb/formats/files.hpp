@@ -73,11 +73,26 @@ void write_mesh(h5::Writer& file, const Mesh& mesh);
 // Reads /mesh of a file already validated against its schema.
 Mesh read_mesh(const h5::Reader& file);
 
-// Writes "<file minus .h5>.xdmf" next to a committed file that has a grid: one Uniform grid with
-// Mixed topology for a /mesh (triangles and quads), or Polyline topology for /beam/points and
-// /beam/segments (structure files); every /fields/point/* as a Node attribute and /fields/cell/*
-// as a Cell attribute. Returns the sidecar path.
+// Writes "<file minus .h5>.xdmf" next to a committed file that has something to draw, for
+// ParaView (formats/README.md, "XDMF sidecars"): a Uniform grid with Mixed topology for a /mesh
+// (triangles and quads) or Polyline topology for /beam/points and /beam/segments (structure), with
+// every /fields/point/* as a Node attribute and /fields/cell/* as a Cell attribute; a dataset
+// whose columns mix units (structure's sectional_strain, sectional_force) as one scalar attribute
+// per column named "<component> [<unit>]" (HyperSlabs of the same dataset); and a polyline grid
+// per group of ordered points: flow wall traces (/walls/*/x, y), walldisp walls (/walls/*/x0),
+// loads and strain flaps (/flaps/*/position), with the group's datasets as Node attributes.
+// Several grids form a Spatial collection. Where that is more than meshio 7 reads (one Uniform
+// grid of whole datasets), "<file minus .h5>.meshio.xdmf" is written beside it with the mesh or
+// beam grid and its datasets as stored. Returns the sidecar path, or an empty path (and writes
+// nothing) for a file with nothing to draw.
 std::filesystem::path write_xdmf_sidecar(const std::filesystem::path& h5_file);
+// "<file minus .h5>.meshio.xdmf".
+std::filesystem::path meshio_sidecar_path(const std::filesystem::path& h5_file);
+// Writes `output`, a Temporal collection over the files (e.g. the iterates of a two-way run), each
+// the grids its sidecar has, at time 1, 2, ... in the order given, referencing the files by paths
+// relative to `output`'s folder. BadInput if a file has nothing to draw.
+std::filesystem::path write_xdmf_series(const std::filesystem::path& output,
+                                        const std::vector<std::filesystem::path>& h5_files);
 
 // Generic in-memory image of a file: every group, dataset and attribute.
 struct AttributeValue {

@@ -17,6 +17,8 @@ struct LoadsFlap {
   double width = 0.0;               // [m] the traces were multiplied by
   std::vector<std::string> traces;  // wall traces mapped
   std::vector<double> s;            // [m] arc length of each beam node
+  std::vector<Eigen::Vector2d> position;  // [m] reference position of each beam node (1.2;
+                                          // empty: not stored, as in 1.0 and 1.1 files)
   // One row per beam node, (x, y, z) components.
   std::vector<Eigen::Vector3d> distributed_force;   // [N/m] L2 projection, for plots
   std::vector<Eigen::Vector3d> distributed_moment;  // [N]
