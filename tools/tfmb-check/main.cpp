@@ -1,13 +1,15 @@
+// clang-format off
 // tfmb-check: validate tfmb files against their specs (formats/*.md) and summarise them.
 //
 // Sample runs:
-//   tfmb-check flowmesh.h5 flow.h5        # exit 0 and a summary, or exit 3 and one line per
-//   problem tfmb-check --list                     # the file kinds this build knows tfmb-check
-//   --spec flow                # the Markdown table of a kind's layout tfmb-check --example flow -o
-//   ex.h5    # a small valid file of a kind, to start an external writer tfmb-check --sidecar
-//   flow.h5          # (re)write flow.xdmf (an external writer's file) tfmb-check --series -o
-//   flow-iterations.xdmf iter-*/flow.h5   # iterates as time steps
+//   tfmb-check flowmesh.h5 flow.h5      # exit 0 and a summary, or exit 3, one line per problem
+//   tfmb-check --list                   # the file kinds this build knows
+//   tfmb-check --spec flow              # the Markdown table of a kind's layout
+//   tfmb-check --example flow -o ex.h5  # a small valid file of a kind, for an external writer
+//   tfmb-check --sidecar flow.h5        # (re)write flow.xdmf of an external writer's file
+//   tfmb-check --series -o flow-iterations.xdmf flow.h5  # iterates (iter-*/flow.h5) as times
 #include <iostream>
+// clang-format on (the sample lines above are run as they stand)
 
 #include "check.hpp"
 #include "tfmb/common/cli.hpp"
