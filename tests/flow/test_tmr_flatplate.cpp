@@ -122,6 +122,19 @@ void check_flat_plate(const std::string& model, const std::string& reference_nam
   fs::remove_all(dir);
 }
 
+// model.h5 and flowmesh.h5 of the 69 x 49-point level in `dir` (log.txt there), with `extra`
+// --set options; false if a tool failed
+bool make_level_69(const fs::path& dir, const std::string& extra) {
+  const std::string log = " 2>>" + (dir / "log.txt").string();
+  return run((bin_dir / "tfmb-input").string() + " " +
+             (source_dir / "cases/tmr-flatplate/case.toml").string() +
+             " --set mesh.cells_upstream=12 --set mesh.cells_along=56 --set mesh.cells_across=48"
+             " --set flow.first_cell_height=4e-6" +
+             extra + " -o " + (dir / "model.h5").string() + " -q" + log) == 0 &&
+         run((bin_dir / "tfmb-mesh").string() + " flow " + (dir / "model.h5").string() + " -o " +
+             (dir / "flowmesh.h5").string() + log) == 0;
+}
+
 }  // namespace
 
 TEST(TmrFlatPlate, SpalartAllmarasSkinFrictionAndDrag) { check_flat_plate("sa", "sa", 0.01); }
@@ -147,15 +160,7 @@ TEST(TmrFlatPlate, CoupledSpalartAllmarasGivesTheSegregatedSolution) {
       fs::temp_directory_path() / ("tfmb_tmr_coupled_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const std::string quiet = " -q 2>>" + (dir / "log.txt").string();
-  ASSERT_EQ(run((bin_dir / "tfmb-input").string() + " " +
-                (source_dir / "cases/tmr-flatplate/case.toml").string() +
-                " --set mesh.cells_upstream=12 --set mesh.cells_along=56 --set mesh.cells_across=48"
-                " --set flow.first_cell_height=4e-6 -o " +
-                (dir / "model.h5").string() + quiet),
-            0);
-  ASSERT_EQ(run((bin_dir / "tfmb-mesh").string() + " flow " + (dir / "model.h5").string() + " -o " +
-                (dir / "flowmesh.h5").string() + " 2>>" + (dir / "log.txt").string()),
-            0);
+  ASSERT_TRUE(make_level_69(dir, ""));
   const std::string common =
       (bin_dir / "tfmb-flow").string() + " " + (dir / "flowmesh.h5").string() +
       " --p0 117686.646 --T0 302.4 --ambient-pressure 114450 --ambient-temperature 300"
@@ -215,15 +220,7 @@ TEST(TmrFlatPlate, SstTimeAccurateKeepsTheSteadyState) {
       fs::temp_directory_path() / ("tfmb_tmr_sst_time_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const std::string quiet = " -q 2>>" + (dir / "log.txt").string();
-  ASSERT_EQ(run((bin_dir / "tfmb-input").string() + " " +
-                (source_dir / "cases/tmr-flatplate/case.toml").string() +
-                " --set mesh.cells_upstream=12 --set mesh.cells_along=56 --set mesh.cells_across=48"
-                " --set flow.first_cell_height=4e-6 --set mesh.leading_edge_spacing=0.004 -o " +
-                (dir / "model.h5").string() + quiet),
-            0);
-  ASSERT_EQ(run((bin_dir / "tfmb-mesh").string() + " flow " + (dir / "model.h5").string() + " -o " +
-                (dir / "flowmesh.h5").string() + " 2>>" + (dir / "log.txt").string()),
-            0);
+  ASSERT_TRUE(make_level_69(dir, " --set mesh.leading_edge_spacing=0.004"));
   const std::string common =
       (bin_dir / "tfmb-flow").string() + " " + (dir / "flowmesh.h5").string() +
       " --p0 117686.646 --T0 302.4 --ambient-pressure 114450 --ambient-temperature 300"

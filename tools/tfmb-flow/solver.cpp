@@ -396,16 +396,11 @@ void FlowSolver::turbulence_residual(bool jacobian, const std::vector<double>* d
   }
   for (const auto& face : dual_.boundary_faces) {
     const int i = face.node;
-    const BoundaryCondition& bc = bcs_[face.curve];
-    const double vn = w_[i][1] * face.normal.x + w_[i][2] * face.normal.y;
-    if (vn >= 0.0 || bc.kind == BcKind::slip_wall || bc.kind == BcKind::symmetry || bc.no_slip())
+    State outside;
+    const double vn = turbulence_inflow(face, outside);
+    if (vn >= 0.0)
       continue;
-    // inflow through inflow, far-field or outflow (backflow) faces brings free-stream nu_tilde
-    double nu_b = nu[i];
-    if (bc.kind == BcKind::farfield) {
-      const State& inf = bc.node_freestream.empty() ? bc.freestream : bc.node_freestream[i];
-      nu_b = visc.viscosity(gas_.temperature(inf)) / inf[0];
-    }
+    const double nu_b = visc.viscosity(gas_.temperature(outside)) / outside[0];
     sa_res_[i] -= -vn * (settings_.sa_freestream_ratio * nu_b - nu_tilde_[i]);
     if (jacobian)
       sa_diag_[i] += -vn;
@@ -467,6 +462,18 @@ void FlowSolver::turbulence_residual(bool jacobian, const std::vector<double>* d
         sa_diag_[i] += physical_time_diagonal(i);
     }
   }
+}
+
+double FlowSolver::turbulence_inflow(const BoundaryFace& face, State& outside) const {
+  const int i = face.node;
+  const BoundaryCondition& bc = bcs_[face.curve];
+  const double vn = w_[i][1] * face.normal.x + w_[i][2] * face.normal.y;
+  if (vn >= 0.0 || bc.kind == BcKind::slip_wall || bc.kind == BcKind::symmetry || bc.no_slip())
+    return 0.0;
+  outside = w_[i];
+  if (bc.kind == BcKind::farfield)
+    outside = bc.node_freestream.empty() ? bc.freestream : bc.node_freestream[i];
+  return vn;
 }
 
 double FlowSolver::turbulence_residual_norm() const {

@@ -338,6 +338,11 @@ class FlowSolver {
   // for the coupled system also the cross terms sa_cross_diag_ / sa_cross_offdiag_.
   void turbulence_residual(bool jacobian, const std::vector<double>* diag_scale);
   double turbulence_residual_norm() const;  // RMS of sa_res_ / V off the walls
+  // Inflow of turbulence through a boundary face (inflow, far field, or backflow through an
+  // outflow; not walls, symmetry or slip walls): the face's inward normal velocity times its
+  // area (negative), 0 where none enters; `outside` the state whose free-stream turbulence
+  // enters (the far field's, else the node's own)
+  double turbulence_inflow(const BoundaryFace& face, State& outside) const;
   // The coupled 5x5 system: mean-flow blocks of jac_, the nu_tilde row of sa_diag_ and
   // sa_offdiag_ scaled by sa_row_scale_, and the cross blocks: mean-flow rows against
   // nu_tilde through mu_t in the viscous fluxes, the nu_tilde row against the mean flow

@@ -240,13 +240,10 @@ double FlowSolver::sst_step(double cfl) {
   // inflow through inflow, far-field or outflow (backflow) faces brings the free-stream values
   for (const auto& face : dual_.boundary_faces) {
     const int i = face.node;
-    const BoundaryCondition& bc = bcs_[face.curve];
-    const double vn = w_[i][1] * face.normal.x + w_[i][2] * face.normal.y;
-    if (vn >= 0.0 || bc.kind == BcKind::slip_wall || bc.kind == BcKind::symmetry || bc.no_slip())
+    State outside;
+    const double vn = turbulence_inflow(face, outside);
+    if (vn >= 0.0)
       continue;
-    State outside = w_[i];
-    if (bc.kind == BcKind::farfield)
-      outside = bc.node_freestream.empty() ? bc.freestream : bc.node_freestream[i];
     const double a = gas_.sound_speed(outside);
     const double mu = visc.viscosity(gas_.temperature(outside));
     rhs_k[i] += -vn * (sst::freestream_k(a) - sst_k_[i]);
