@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "tfmb/common/errors.hpp"
+#include "tfmb/common/text_file.hpp"
 #include "tfmb/formats/files.hpp"
 
 namespace tfmb::formats {
@@ -262,30 +263,6 @@ std::vector<std::string> GridWriter::grids(const std::string& name) {
   lines("/walls", {"x0"});
   lines("/flaps", {"position"});
   return out;
-}
-
-void write_text_atomically(const std::filesystem::path& target, const std::string& text) {
-  std::filesystem::path tmp = target;
-  tmp += ".tmp";
-  errno = 0;
-  std::ofstream out(tmp);
-  out << text;
-  // A full disk shows when the buffer is written out, at close: checked there, and the partial
-  // temporary file removed.
-  out.close();
-  std::error_code ec;
-  if (!out) {
-    const std::string reason = errno ? std::strerror(errno) : "write failed";
-    std::filesystem::remove(tmp, ec);
-    throw InternalError(target.string() + ": cannot write the XDMF sidecar (" + reason + ")");
-  }
-  std::filesystem::rename(tmp, target, ec);
-  if (ec) {
-    const std::string reason = ec.message();
-    std::filesystem::remove(tmp, ec);
-    throw InternalError(target.string() + ": cannot rename from " + tmp.string() + " (" + reason +
-                        ")");
-  }
 }
 
 // Indents every line of a block by `spaces` more.

@@ -10,6 +10,7 @@
 #include <map>
 #include <sstream>
 
+#include "tfmb/common/text_file.hpp"
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/gmsh_session.hpp"
 
@@ -161,11 +162,12 @@ std::vector<Curve> read_geometry(const std::filesystem::path& file, double scale
 }
 
 void write_curves_csv(const std::vector<Curve>& curves, const std::filesystem::path& file) {
-  std::ofstream out(file);
+  std::ostringstream out;
   out << "curve,x,y\n" << std::setprecision(17);
   for (const auto& c : curves) {
     for (const auto& p : c.points) out << c.name << "," << p.x() << "," << p.y() << "\n";
   }
+  write_text_atomically(file, out.str());  // whole or not at all (a full disk: exit 4)
 }
 
 }  // namespace tfmb::input

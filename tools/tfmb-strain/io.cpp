@@ -7,6 +7,7 @@
 
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
+#include "tfmb/common/text_file.hpp"
 #include "tfmb/formats/materials.hpp"
 #include "tfmb/formats/schema.hpp"
 #include "tfmb/formats/strain.hpp"
@@ -145,9 +146,8 @@ std::string json_worst(const Worst& w) {
 }  // namespace
 
 void write_summary_json(const std::filesystem::path& file, const StrainResult& r) {
-  const std::filesystem::path tmp = file.string() + ".tmp";
   {
-    std::ofstream out(tmp);
+    std::ostringstream out;
     out << "{\n  \"format\": \"tfmb/strain-summary\",\n  \"mechanical_basis\": " << json_string(basis_name(r.basis))
         << ",\n  \"worst\": {\n    \"mechanical\": " << json_worst(r.worst_mechanical)
         << ",\n    \"thermal\": " << json_worst(r.worst_thermal) << ",\n    \"total\": " << json_worst(r.worst_total)
@@ -171,9 +171,8 @@ void write_summary_json(const std::filesystem::path& file, const StrainResult& r
       out << (i ? "," : "") << "\n    " << json_worst(r.worst_list[i]);
     }
     out << "\n  ]\n}\n";
-    if (!out) throw InternalError(tmp.string() + ": cannot write");
+    write_text_atomically(file, out.str());
   }
-  std::filesystem::rename(tmp, file);
 }
 
 }  // namespace tfmb::strain

@@ -4,6 +4,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "tfmb/formats/files.hpp"
 #include "tfmb/common/cli.hpp"
 #include "tfmb/common/errors.hpp"
 
@@ -167,7 +168,17 @@ StrainResult run(const Options& options, const Logger& logger, std::ostream& out
   std::filesystem::path summary = options.summary;
   if (summary.empty())
     summary = options.output.parent_path() / "summary.json";
-  write_summary_json(summary, result);
+  try {
+    write_summary_json(summary, result);
+  } catch (...) {
+    // the run's two results come together or not at all: no strain.h5 without its summary
+    std::error_code ec;
+    std::filesystem::path sidecar = options.output;
+    std::filesystem::remove(sidecar.replace_extension(".xdmf"), ec);
+    std::filesystem::remove(formats::meshio_sidecar_path(options.output), ec);
+    std::filesystem::remove(options.output, ec);
+    throw;
+  }
   logger.summary("wrote " + options.output.string() + " and " + summary.string() +
                  "; worst total margin " + describe(result.worst_total));
   return result;
