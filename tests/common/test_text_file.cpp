@@ -37,7 +37,8 @@ TEST(TextFile, WritesWholeAndReplaces) {
 // A write that cannot happen (here: no such directory) throws InternalError naming the file and
 // the reason, and leaves nothing behind.
 TEST(TextFile, FailedWriteThrowsAndLeavesNothing) {
-  const fs::path file = fs::temp_directory_path() / ("tfmb_no_such_dir_" + std::to_string(::getpid())) / "s.json";
+  const fs::path file =
+      fs::temp_directory_path() / ("tfmb_no_such_dir_" + std::to_string(::getpid())) / "s.json";
   try {
     tfmb::write_text_atomically(file, "text");
     FAIL() << "no exception";

@@ -10,9 +10,9 @@
 #include <map>
 #include <sstream>
 
-#include "tfmb/common/text_file.hpp"
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/gmsh_session.hpp"
+#include "tfmb/common/text_file.hpp"
 
 namespace tfmb::input {
 

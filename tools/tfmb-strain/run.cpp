@@ -4,9 +4,9 @@
 #include <iomanip>
 #include <sstream>
 
-#include "tfmb/formats/files.hpp"
 #include "tfmb/common/cli.hpp"
 #include "tfmb/common/errors.hpp"
+#include "tfmb/formats/files.hpp"
 
 namespace tfmb::strain {
 
