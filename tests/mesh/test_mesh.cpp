@@ -332,6 +332,26 @@ TEST(Geometry, AxisymmetricNeedsAChannelDomain) {
   EXPECT_THROW(load_case("bmg-conical", {"depth=2"}), BadInput);
 }
 
+// Model format 2.7: the reader refuses an axis that the geometry does not turn about, and an
+// axisymmetric model without an axis.
+TEST(Geometry, ModelReaderChecksTheAxisAgainstTheGeometry) {
+  const auto dir = tfmb::test::scratch_dir("model-axis");
+  const auto good = load_case("bmg-conical");
+  formats::write_model(good, dir / "good.h5", "test", {});
+  EXPECT_EQ(formats::read_model(dir / "good.h5").geometry, "axisymmetric");
+  auto planar = good;
+  planar.geometry = "planar";
+  formats::write_model(planar, dir / "planar.h5", "test", {});
+  EXPECT_THROW(formats::read_model(dir / "planar.h5"), BadInput);
+  auto no_axis = good;
+  for (auto& b : no_axis.domain.boundaries) {
+    if (b.kind == "axis")
+      b.kind = "symmetry";
+  }
+  formats::write_model(no_axis, dir / "no_axis.h5", "test", {});
+  EXPECT_THROW(formats::read_model(dir / "no_axis.h5"), BadInput);
+}
+
 TEST(Geometry, NasaB1ThroatAndExitHeights) {
   // refdata/flow/mason_tp1704_B1_geometry_sonicline.csv: h_t 1.37 cm, h_e 2.46 cm (half-heights),
   // exit/throat 1.796. The model's inner walls (drawn as `reference = "inner"`, moved to the mid
