@@ -14,3 +14,6 @@ FLOW_OPTS = --threads 2 --order 2 --first-order-start --stationary-tolerance 1e-
 ifeq ($(SMOKE),1)
   SET += --set mesh.cells_along=280 --set mesh.cells_across=160
 endif
+# Pictures: the wall p/pt against the experiment in inches from the throat, the data's own axis.
+PLOT_REFERENCE = --reference '$(TFMB_ROOT)refdata/flow/bmg_conical_nozzle_wall_p_gdtk.csv:x_in_from_throat:p_over_pt:label=Back, Massier and Gier (1965), read off a figure' \
+  --x-origin 0 --x-length 0.0254 --x-label 'x [in] (throat at 0)'
