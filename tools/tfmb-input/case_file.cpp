@@ -436,10 +436,11 @@ CaseSpec read_case(const std::filesystem::path& file, const std::vector<std::str
              "the axis), not '" +
                  d.kind + "'");
     }
-    // Per-radian quantities of an axisymmetric file have no depth (flowmesh.md: depth 1).
+    // A body of revolution has no depth to refer quantities to (flowmesh.md: depth 1).
     if (m.geometry == "axisymmetric" && m.depth != 1.0) {
       k.fail("geometry",
-             "= 'axisymmetric' needs the top-level depth = 1 (quantities are per radian), not " +
+             "= 'axisymmetric' needs the top-level depth = 1 (a body of revolution has no depth), "
+             "not " +
                  std::to_string(m.depth));
     }
     k.finish();
