@@ -455,6 +455,33 @@ void read_domain(const h5::Reader& r, Model& model) {
       }
     }
   }
+  // 2.7: an axisymmetric model turns about the x axis, so its domain must reach down to y = 0
+  // along an `axis` piece and nothing may lie below it; a planar model has no axis.
+  const bool axisymmetric = model.geometry == "axisymmetric";
+  if (axisymmetric && d.kind != "channel")
+    r.fail("/domain",
+           "kind '" + d.kind + "' in an axisymmetric model (only 'channel' has an axis)");
+  bool has_axis = false;
+  for (const auto& b : model.domain.boundaries) {
+    const std::string g = "/domain/boundaries/" + b.name;
+    if (b.kind == "axis") {
+      if (!axisymmetric)
+        r.fail(g, "kind 'axis' in a planar model (root geometry = 'axisymmetric' needed)");
+      has_axis = true;
+      for (const auto& p : b.points) {
+        if (std::abs(p.y()) > 1e-12 * (1.0 + std::abs(p.x())))
+          r.fail(g + "/points",
+                 "an axis piece must lie on y = 0, found y = " + std::to_string(p.y()));
+      }
+    }
+    for (const auto& p : b.points) {
+      if (axisymmetric && p.y() < -1e-12 * (1.0 + std::abs(p.x())))
+        r.fail(g + "/points",
+               "an axisymmetric domain lies in y >= 0, found y = " + std::to_string(p.y()));
+    }
+  }
+  if (axisymmetric && !has_axis)
+    r.fail("/domain/boundaries", "an axisymmetric model needs a boundary of kind 'axis' on y = 0");
 }
 
 // Flow conditions, thermal settings, mesh controls and analysis settings: plain attributes.

@@ -10,6 +10,9 @@
 // 2.4: support kinds sliding_clamp and sliding_pinned with /supports/*/axis.
 // 2.5: optional /conditions@viscous_length (nu/u_tau of the y+ estimate; tfmb-mesh reports the
 // first layer's y+ from it instead of compiling tfmb-input's estimate).
+// 2.6: /conditions@turbulence k_omega_sst, k_omega_sst_v.
+// 2.7: root @geometry may be "axisymmetric" (case.toml domain.geometry; channel domains only,
+// whose lower piece is then of kind "axis" on y = 0; the reader checks both).
 #include "schema_rules.hpp"
 
 namespace tfmb::formats::detail {
@@ -26,7 +29,7 @@ Schema model_schema() {
   Schema s{"model",
            "tfmb/model",
            2,
-           6,
+           7,
            "the analysis model: flaps as beams, sections, joints, supports, walls, flow domain, "
            "conditions, thermal, mesh and analysis settings",
            false,

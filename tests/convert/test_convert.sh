@@ -48,6 +48,15 @@ gmsh -2 -format msh22 unknown.geo -o unknown.msh > /dev/null 2>&1
 "$bin/tfmb-convert" import unknown.msh -o x.h5 2> err.txt; [ $? -eq 3 ] || fail "unknown kind not exit 3"
 grep -q "entry" err.txt || fail "unknown kind message does not name the boundary"
 "$bin/tfmb-convert" import unknown.msh -o mapped.h5 --map entry=inflow || fail "--map"
+# Axisymmetric: the lower wall (y = 0) as the axis; without --geometry an axis is refused, and
+# --geometry axisymmetric without an axis too.
+"$bin/tfmb-convert" import mixed.msh -o axi.h5 --geometry axisymmetric --map lower_wall=axis || fail "axisymmetric import"
+/usr/bin/python3 -c "import h5py; f = h5py.File('axi.h5'); assert f.attrs['geometry'] == 'axisymmetric'; assert f['/mesh/boundaries/lower_wall'].attrs['kind'] == 'axis'" || fail "axisymmetric header"
+"$bin/tfmb-check" --no-summary axi.h5 || fail "tfmb-check of the axisymmetric import"
+"$bin/tfmb-convert" import mixed.msh -o x.h5 --map lower_wall=axis 2> err.txt; [ $? -eq 3 ] || fail "planar axis not exit 3"
+grep -q "geometry axisymmetric" err.txt || fail "planar axis message"
+"$bin/tfmb-convert" import mixed.msh -o x.h5 --geometry axisymmetric 2> err.txt; [ $? -eq 3 ] || fail "axisymmetric without axis not exit 3"
+grep -q "kind axis" err.txt || fail "axisymmetric without axis message"
 "$bin/tfmb-convert" export x.h5 -o x.vtu 2> err.txt; [ $? -eq 3 ] || fail "export of missing file not exit 3"
 "$bin/tfmb-convert" --bogus 2> /dev/null; [ $? -eq 2 ] || fail "usage error not exit 2"
 [ ! -e x.h5 ] && [ ! -e x.h5.tmp ] || fail "a failed import left a file"

@@ -5,8 +5,9 @@
 
 #include <map>
 
-#include "tfmb-mesh/mesh_tools.hpp"
 #include "run_tool.hpp"
+#include "tfmb-mesh/mesh_tools.hpp"
+#include "tfmb/formats/files.hpp"
 #include "tfmb/formats/schema.hpp"
 
 using tfmb::test::run_tool;
@@ -75,6 +76,16 @@ TEST_P(Case, ModelAndMeshesPassCheckAndOpenInMeshio) {
     EXPECT_NE(r.stderr_text.find("quality: min angle"), std::string::npos);
     EXPECT_EQ(run_tool("tfmb-check --no-summary " + (dir / "flowmesh.h5").string(), dir).exit_code, 0);
     expect_good_mesh(dir / "flowmesh.h5", "flowmesh");
+    // The model's geometry reaches the flow mesh; an axisymmetric one turns about an `axis`.
+    const auto header =
+        tfmb::formats::read_header(tfmb::formats::open_checked(dir / "flowmesh.h5", "flowmesh"));
+    EXPECT_EQ(header.geometry, parsed.geometry);
+    if (parsed.geometry == "axisymmetric") {
+      const auto mesh =
+          tfmb::formats::read_mesh(tfmb::formats::open_checked(dir / "flowmesh.h5", "flowmesh"));
+      ASSERT_EQ(mesh.boundaries.count("axis"), 1u);
+      EXPECT_EQ(mesh.boundaries.at("axis").kind, "axis");
+    }
     sidecars.push_back((dir / "flowmesh.xdmf").string());
   } else {
     r = run_tool("tfmb-mesh flow " + model.string() + " -o " + (dir / "flowmesh.h5").string(), dir);
@@ -96,8 +107,9 @@ TEST_P(Case, ModelAndMeshesPassCheckAndOpenInMeshio) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Cases, Case,
-                         ::testing::Values("simple-nozzle", "realistic-nozzle", "nasa-2dcd", "nparc-cdv",
-                                           "tmr-flatplate", "beam-revolute", "flexible-joint"),
+                         ::testing::Values("simple-nozzle", "realistic-nozzle", "nasa-2dcd",
+                                           "nparc-cdv", "bmg-conical", "tmr-flatplate",
+                                           "beam-revolute", "flexible-joint"),
                          [](const auto& info) {
                            std::string n = info.param;
                            std::replace(n.begin(), n.end(), '-', '_');

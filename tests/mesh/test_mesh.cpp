@@ -291,6 +291,67 @@ TEST(Geometry, NparcChannelWallFollowsTheExactAreaLaw) {
   EXPECT_EQ(m.quads.rows(), 120 * 30);
 }
 
+TEST(Geometry, BmgConicalIsAxisymmetricAboutAnAxisOnYZero) {
+  // cases/bmg-conical: domain.geometry = "axisymmetric" makes the channel's lower line the axis
+  // of revolution. The wall follows the contour of tests/flow/test_bmg_nozzle.cpp (throat radius
+  // 0.775 in, throat arc 1.55 in, 15 deg cone; 30 deg cone cut by the 1.5955 in tube), sampled
+  // at 0.01 in on the arc: chord sag dx^2 / (8 R) = 8e-6 in, so 2e-5 in covers it.
+  const auto model = load_case("bmg-conical");
+  EXPECT_EQ(model.geometry, "axisymmetric");
+  mesh::FlowMeshReport report;
+  const auto m = mesh::build_flow_mesh(model, {}, report, quiet());
+  ASSERT_EQ(m.boundaries.count("axis"), 1u);
+  EXPECT_EQ(m.boundaries.count("symmetry"), 0u);
+  EXPECT_EQ(m.boundaries.at("axis").kind, "axis");
+  for (Eigen::Index e = 0; e < m.boundaries.at("axis").edges.rows(); ++e)
+    EXPECT_EQ(m.points(m.boundaries.at("axis").edges(e, 0), 1), 0.0);
+  const double inch = 0.0254, rt = 0.775, rc = 1.55, tube = 1.5955;
+  const double div = 15.0 * M_PI / 180.0, conv = 30.0 * M_PI / 180.0;
+  auto radius = [&](double x) {  // [in], tests/flow/test_bmg_nozzle.cpp wall_radius_in
+    const double xa = x >= 0.0 ? rc * std::sin(div) : -rc * std::sin(conv);
+    if ((x >= 0.0 && x <= xa) || (x < 0.0 && x >= xa))
+      return rt + rc - std::sqrt(rc * rc - x * x);
+    if (x >= 0.0)
+      return rt + rc * (1.0 - std::cos(div)) + (x - xa) * std::tan(div);
+    return std::min(rt + rc * (1.0 - std::cos(conv)) + (xa - x) * std::tan(conv), tube);
+  };
+  const auto& wall = m.boundaries.at("wall");
+  double worst = 0.0;
+  for (Eigen::Index e = 0; e < wall.edges.rows(); ++e) {
+    const double x = m.points(wall.edges(e, 0), 0) / inch, y = m.points(wall.edges(e, 0), 1) / inch;
+    worst = std::max(worst, std::abs(y - radius(x)));
+  }
+  EXPECT_LT(worst, 2e-5);
+  EXPECT_EQ(m.quads.rows(), 140 * 80);
+  // The wall layer's first height is the case's 5e-7 m at the throat, the narrowest column.
+  EXPECT_NEAR(report.first_layer_height, 5e-7, 1e-12);
+}
+
+TEST(Geometry, AxisymmetricNeedsAChannelDomain) {
+  EXPECT_THROW(load_case("simple-nozzle", {"domain.geometry=axisymmetric"}), BadInput);
+  EXPECT_THROW(load_case("bmg-conical", {"depth=2"}), BadInput);
+}
+
+// Model format 2.7: the reader refuses an axis that the geometry does not turn about, and an
+// axisymmetric model without an axis.
+TEST(Geometry, ModelReaderChecksTheAxisAgainstTheGeometry) {
+  const auto dir = tfmb::test::scratch_dir("model-axis");
+  const auto good = load_case("bmg-conical");
+  formats::write_model(good, dir / "good.h5", "test", {});
+  EXPECT_EQ(formats::read_model(dir / "good.h5").geometry, "axisymmetric");
+  auto planar = good;
+  planar.geometry = "planar";
+  formats::write_model(planar, dir / "planar.h5", "test", {});
+  EXPECT_THROW(formats::read_model(dir / "planar.h5"), BadInput);
+  auto no_axis = good;
+  for (auto& b : no_axis.domain.boundaries) {
+    if (b.kind == "axis")
+      b.kind = "symmetry";
+  }
+  formats::write_model(no_axis, dir / "no_axis.h5", "test", {});
+  EXPECT_THROW(formats::read_model(dir / "no_axis.h5"), BadInput);
+}
+
 TEST(Geometry, NasaB1ThroatAndExitHeights) {
   // refdata/flow/mason_tp1704_B1_geometry_sonicline.csv: h_t 1.37 cm, h_e 2.46 cm (half-heights),
   // exit/throat 1.796. The model's inner walls (drawn as `reference = "inner"`, moved to the mid

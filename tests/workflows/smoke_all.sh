@@ -53,6 +53,8 @@ run_case nparc-cdv "flow summary report" CASE=nparc-cdv
 # NASA B1 at NPR 8.91, second-order SA (case.mk): converges on the SMOKE mesh (124 iterations);
 # a smoke run would accept a stop at SMOKE's iteration limit (exit 1) and checks the files.
 run_case nasa-2dcd "flow summary report" CASE=nasa-2dcd FLOW="$flow"
+# Back-Massier-Gier, axisymmetric second-order SA on the SMOKE mesh (case.mk).
+run_case bmg-conical "flow summary report" CASE=bmg-conical
 run_case tmr-flatplate "flow summary report" CASE=tmr-flatplate
 run_case beam-revolute "structure summary report" CASE=beam-revolute
 run_case flexible-joint "structure summary report" CASE=flexible-joint

@@ -427,6 +427,22 @@ CaseSpec read_case(const std::filesystem::path& file, const std::vector<std::str
       d.upstream_length = k.number("upstream_length", std::nullopt, 0.0, 1e4, "m");
       d.farfield_height = k.number("height", std::nullopt, 1e-6, 1e4, "m");
     }
+    m.geometry = k.text("geometry", std::string("planar"), {"planar", "axisymmetric"});
+    // Only the channel has a line that can be the axis: its lower boundary y = 0. The nozzle
+    // domain holds both halves and the flat plate lies on y = 0, so neither can turn about x.
+    if (m.geometry == "axisymmetric" && d.kind != "channel") {
+      k.fail("geometry",
+             "= 'axisymmetric' needs domain.kind = 'channel' (the lower boundary y = 0 becomes "
+             "the axis), not '" +
+                 d.kind + "'");
+    }
+    // A body of revolution has no depth to refer quantities to (flowmesh.md: depth 1).
+    if (m.geometry == "axisymmetric" && m.depth != 1.0) {
+      k.fail("geometry",
+             "= 'axisymmetric' needs the top-level depth = 1 (a body of revolution has no depth), "
+             "not " +
+                 std::to_string(m.depth));
+    }
     k.finish();
   }
   {

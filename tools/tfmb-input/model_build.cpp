@@ -426,7 +426,9 @@ std::vector<DomainBoundary> channel_domain(const Model& model, const std::vector
   }
   const Point a = w.front(), b = w.back();
   std::vector<DomainBoundary> loop;
-  loop.push_back(piece("symmetry", "symmetry", segment({a.x(), 0.0}, {b.x(), 0.0})));
+  // Axisymmetric: the lower line is the axis of revolution (tfmb-flow's `axis` kind).
+  const std::string lower = model.geometry == "axisymmetric" ? "axis" : "symmetry";
+  loop.push_back(piece(lower, lower, segment({a.x(), 0.0}, {b.x(), 0.0})));
   loop.push_back(piece("outflow", "outflow", segment({b.x(), 0.0}, b)));
   loop.push_back(piece("wall", "wall", reversed(w)));
   loop.push_back(piece("inflow", "inflow", segment(a, {a.x(), 0.0})));

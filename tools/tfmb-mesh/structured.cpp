@@ -1,5 +1,6 @@
 // Structured quad meshes of the simple validation domains: the quasi-1D channel (NPARC CDV
-// nozzle: wall above, symmetry axis below) and the TMR flat plate (symmetry ahead of the plate,
+// nozzle: wall above, symmetry line below; axisymmetric models: the axis of revolution below,
+// e.g. the Back-Massier-Gier cone) and the TMR flat plate (symmetry ahead of the plate,
 // wall, outflow, far field, inflow), clustered to the walls by geometric stretching.
 #include <algorithm>
 #include <cmath>
@@ -117,7 +118,9 @@ Mesh build_structured_mesh(const Model& model, double scale, FlowMeshReport& rep
     for (int j = 0; j <= nj; ++j) out.push_back(static_cast<std::int64_t>(ni * nn + j));
     for (int i = ni; i >= 0; --i) top.push_back(static_cast<std::int64_t>(i * nn + nj));
     for (int j = nj; j >= 0; --j) in.push_back(static_cast<std::int64_t>(j));
-    mesh.boundaries["symmetry"] = boundary("symmetry", sym);
+    // The model names the lower line: `symmetry` (planar) or `axis` (axisymmetric, 2.7).
+    const std::string lower = model.geometry == "axisymmetric" ? "axis" : "symmetry";
+    mesh.boundaries[lower] = boundary(find(lower).kind, sym);
     mesh.boundaries["outflow"] = boundary("outflow", out);
     mesh.boundaries["wall"] = boundary(find("wall").kind, top);
     mesh.boundaries["inflow"] = boundary("inflow", in);
