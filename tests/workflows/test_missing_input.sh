@@ -54,6 +54,7 @@ done
 expect_missing "workflows/case-summary" "$src/workflows/case-summary" "$scratch/no-such-file.h5"
 expect_missing "workflows/adapters/calculix-beam" "$src/workflows/adapters/calculix-beam" "$missing" -o "$out"
 expect_missing "workflows/adapters/compare-structure" "$src/workflows/adapters/compare-structure" "$missing" "$missing"
+expect_missing "workflows/compare-runs" "$src/workflows/compare-runs" "$missing" "$missing"
 # a run folder with a space is refused before anything runs (make split it and created a stray
 # folder named after its first word)
 rc=0; make -s -C "$src" -f Makefile.cases RUN="$scratch/two words" BIN="$bin" model > "$scratch/make" 2>&1 || rc=$?
