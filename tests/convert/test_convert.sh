@@ -34,6 +34,39 @@ PY
 "$bin/tfmb-convert" export flowmesh.h5 -o flowmesh.vtu
 /usr/bin/python3 -c "import meshio; m = meshio.read('flowmesh.vtu'); assert len(m.cells) == 2"
 
+# Export to .su2 and .msh keeps every boundary by name (SU2 marker, gmsh physical curve);
+# importing the file back gives the same points, cells and boundaries (edges in the same order).
+for ext in su2 msh; do
+  "$bin/tfmb-convert" export flowmesh.h5 -o "back.$ext" 2> export.txt || fail "export to .$ext"
+  "$bin/tfmb-convert" import "back.$ext" -o "back-$ext.h5" || fail "import of the exported .$ext"
+  /usr/bin/python3 - "back-$ext.h5" <<'PY' || fail "round trip through .$ext"
+import sys, h5py, numpy as np
+with h5py.File("flowmesh.h5") as a, h5py.File(sys.argv[1]) as b:
+    for key in ("points", "cells/triangle", "cells/quad"):
+        assert np.array_equal(a[f"/mesh/{key}"][()], b[f"/mesh/{key}"][()]), key
+    assert sorted(a["/mesh/boundaries"]) == sorted(b["/mesh/boundaries"])
+    for n in a["/mesh/boundaries"]:
+        assert np.array_equal(a[f"/mesh/boundaries/{n}/edges"][()], b[f"/mesh/boundaries/{n}/edges"][()]), n
+        assert a[f"/mesh/boundaries/{n}"].attrs["kind"] == b[f"/mesh/boundaries/{n}"].attrs["kind"], n
+PY
+done
+grep -q 'MARKER_TAG= lower_wall' back.su2 || fail ".su2 marker named by the boundary"
+grep -q '"upper_wall"' back.msh || fail ".msh physical curve named by the boundary"
+# gmsh itself reads the exported .msh with its physical names.
+gmsh back.msh -0 -o regmsh.msh -format msh22 > gmsh-read.log 2>&1 || fail "gmsh cannot read the exported .msh"
+grep -q '"inflow"' regmsh.msh || fail "gmsh lost the physical names"
+# Boundaries come out with the domain on their left (tfmb-mesh's counter-clockwise loop) whatever
+# the direction in the source file.
+/usr/bin/python3 - <<'PY' || fail "domain on the left of every boundary"
+import h5py, numpy as np
+with h5py.File("flowmesh.h5") as f:
+    cells = [f["/mesh/cells/triangle"][()], f["/mesh/cells/quad"][()]]
+    left = {(int(c[i]), int(c[(i + 1) % len(c)])) for block in cells for c in block for i in range(len(c))}
+    for n in f["/mesh/boundaries"]:
+        for a, b in f[f"/mesh/boundaries/{n}/edges"][()]:
+            assert (int(a), int(b)) in left, (n, a, b)
+PY
+
 # Bad inputs: exit 3 and a message naming the problem.
 set +e
 "$bin/tfmb-convert" import no-such.msh -o x.h5 2> err.txt; [ $? -eq 3 ] || fail "missing file not exit 3"
@@ -59,5 +92,20 @@ grep -q "geometry axisymmetric" err.txt || fail "planar axis message"
 grep -q "kind axis" err.txt || fail "axisymmetric without axis message"
 "$bin/tfmb-convert" export x.h5 -o x.vtu 2> err.txt; [ $? -eq 3 ] || fail "export of missing file not exit 3"
 "$bin/tfmb-convert" --bogus 2> /dev/null; [ $? -eq 2 ] || fail "usage error not exit 2"
+"$bin/tfmb-convert" export flowmesh.h5 -o x.unknownext 2> err.txt; [ $? -eq 2 ] || fail "unknown extension not exit 2"
+"$bin/tfmb-convert" export flowmesh.h5 -o no-such-dir/x.su2 2> err.txt; [ $? -eq 2 ] || fail "missing folder not exit 2"
+# A file that breaks its spec: exit 3 naming the file and the object in it, nothing written.
+/usr/bin/python3 -c "
+import h5py, shutil; shutil.copy('flowmesh.h5', 'bad.h5')
+with h5py.File('bad.h5', 'a') as f: f['/mesh/boundaries/inflow/edges'][0, 0] = 10**6"
+"$bin/tfmb-convert" export bad.h5 -o x.su2 2> err.txt; [ $? -eq 3 ] || fail "out-of-range edge not exit 3"
+grep -q "bad.h5: /mesh/boundaries/inflow/edges: index" err.txt || fail "out-of-range edge message: $(cat err.txt)"
+# A failure while writing (an SU2 marker name cannot hold a space) leaves no partial file.
+/usr/bin/python3 -c "
+import h5py, shutil; shutil.copy('flowmesh.h5', 'spaced.h5')
+with h5py.File('spaced.h5', 'a') as f: f.move('/mesh/boundaries/outflow', '/mesh/boundaries/out flow')"
+"$bin/tfmb-convert" export spaced.h5 -o x.su2 2> err.txt; [ $? -eq 2 ] || fail "marker with a space not exit 2"
+[ ! -e x.su2 ] && [ ! -e x.msh ] && [ ! -e x.unknownext ] || fail "a failed export left a file"
+ls -a | grep -q '^\.tfmb-convert-' && fail "a failed export left its staging folder"
 [ ! -e x.h5 ] && [ ! -e x.h5.tmp ] || fail "a failed import left a file"
 echo "convert tests passed"
