@@ -67,6 +67,74 @@ with h5py.File("flowmesh.h5") as f:
             assert (int(a), int(b)) in left, (n, a, b)
 PY
 
+# import-flow on the channel with a uniform flow (p 1.1e5 Pa, T 300 K, u 100 m/s; OpenFOAM's
+# names) against a model whose domain is the channel: boundaries matched to the model's pieces,
+# the upper wall a flap's inner wall; density and Mach derived; mass flow rho u H and thrust
+# rho u^2 H + (p - p_amb) H through the outflow, exact to round-off; walls' normals leave the
+# fluid. A model piece whose mesh edges come in two runs (here a piece that takes the middle of
+# the lower wall) is refused with the gap's position.
+/usr/bin/python3 - <<'PY'
+import h5py, meshio, numpy as np
+s = h5py.string_dtype()
+def model(path, pieces):
+    with h5py.File(path, "w") as f:
+        for k, v in (("format", "tfmb/model"), ("format_version", "2.7"), ("geometry", "planar")):
+            f.attrs.create(k, v, dtype=s)
+        f.attrs["depth"] = 1.0
+        for i, (name, (points, kind, flap, side)) in enumerate(pieces.items()):
+            g = f.create_group(f"domain/boundaries/{name}")
+            g["points"] = np.array(points, float)
+            g.attrs.create("kind", kind, dtype=s)
+            g.attrs["order"] = np.int64(i)
+            if flap:
+                g.attrs.create("flap", flap, dtype=s)
+                g.attrs.create("side", side, dtype=s)
+        f["domain"].attrs.create("kind", "channel", dtype=s)
+        c = f.create_group("conditions")
+        for k, v in dict(ambient_pressure=1e5, nozzle_pressure_ratio=2.0, exit_pressure_ratio=0.0,
+                         stagnation_temperature=320.0, gamma=1.4, gas_constant=287.0).items():
+            c.attrs[k] = v
+channel = {"lower_wall": ([[0, 0], [2, 0]], "wall", "", ""),
+           "outflow": ([[2, 0], [2, 1]], "outflow", "", ""),
+           "upper_wall": ([[2, 1], [0, 1]], "wall", "f1", "inner"),
+           "inflow": ([[0, 1], [0, 0]], "inflow", "", "")}
+model("model.h5", channel)
+model("model-gap.h5", dict(channel, a_patch=([[0.8, 0], [1.2, 0]], "wall", "", "")))
+m = meshio.read("mixed.msh")
+n = len(m.points)
+cells = [c for c in m.cells if c.type in ("triangle", "quad")]
+meshio.Mesh(m.points, cells, point_data={"p": np.full(n, 1.1e5), "T": np.full(n, 300.0),
+                                         "U": np.tile([100.0, 0.0, 0.0], (n, 1))}).write("uniform.vtu")
+PY
+"$bin/tfmb-convert" import-flow uniform.vtu --model model.h5 -o uniform.h5 2> import-flow.txt \
+  || { cat import-flow.txt; fail "import-flow of the uniform channel flow"; }
+"$bin/tfmb-check" --no-summary uniform.h5 || fail "tfmb-check of the import"
+grep -q "derived from the other fields: density, mach" import-flow.txt || fail "derived fields not said"
+/usr/bin/python3 - <<'PY' || fail "uniform channel flow import"
+import h5py, numpy as np
+f = h5py.File("uniform.h5")
+rho = 1.1e5 / (287.0 * 300.0)
+i = f["/integrals"].attrs
+assert abs(i["mass_flow"] - rho * 100.0) <= 1e-12 * rho * 100.0, i["mass_flow"]
+thrust = rho * 100.0 ** 2 + 1e4
+assert abs(i["thrust_x"] - thrust) <= 1e-12 * thrust and abs(i["thrust_y"]) <= 1e-9 * thrust
+assert sorted(f["/walls"]) == ["lower_wall", "upper_wall"]
+b = f["/mesh/boundaries/upper_wall"].attrs
+assert (b["kind"], b["flap"], b["side"]) == ("wall", "f1", "inner")
+assert "flap" not in f["/mesh/boundaries/lower_wall"].attrs
+assert np.allclose(f["/walls/lower_wall/normal"][()], [0, -1]) and np.allclose(f["/walls/upper_wall/normal"][()], [0, 1])
+x = f["/walls/lower_wall/x"][()]
+assert x[0] == 0.0 and x[-1] == 2.0 and np.all(np.diff(x) > 0)  # domain on the left: +x
+assert np.allclose(f["/fields/point/mach"][()], 100.0 / np.sqrt(1.4 * 287.0 * 300.0))
+assert np.all(f["/walls/upper_wall/wall_shear"][()] == 0.0)
+PY
+set +e
+"$bin/tfmb-convert" import-flow uniform.vtu --model model-gap.h5 -o gap.h5 2> err.txt; rc=$?
+set -e
+[ $rc -eq 3 ] && grep -q "lower_wall form 2 separate runs (a gap at (1.25, 0) m)" err.txt \
+  || fail "a wall in two runs: exit $rc, $(cat err.txt)"
+[ ! -e gap.h5 ] || fail "a refused import-flow left a file"
+
 # Bad inputs: exit 3 and a message naming the problem.
 set +e
 "$bin/tfmb-convert" import no-such.msh -o x.h5 2> err.txt; [ $? -eq 3 ] || fail "missing file not exit 3"
