@@ -4,9 +4,10 @@
 # its boundaries (names, kinds, flaps, sides, edges) and wall traces (nodes, positions, pressure,
 # temperature, normals) equal the original's, mass flow and thrust agree to 1e-4 (tfmb-flow sums
 # its boundary-condition fluxes, the import the node states), and tfmb-loads and tfmb-heat
-# (wall-temperature condition) then read. The same solution as OpenFOAM writes a 2D case (one
-# layer of hexahedra and wedges, fields p, T, U, rho, nut) and as cell data only imports too. The
-# flow mesh goes through .su2 and .msh and comes back with its kinds, flaps and sides by --model.
+# (wall-temperature condition; with the wall quantities named by --field, convection) then read.
+# The same solution as OpenFOAM writes a 2D case (one layer of hexahedra and wedges, fields p, T,
+# U, rho, nut) and as cell data only imports too. The flow mesh goes through .su2 and .msh and
+# comes back with its kinds, flaps and sides by --model.
 #   test_import_flow.sh SOURCE_DIR SCRATCH_DIR BIN_DIR
 set -euo pipefail
 src=$1 run=$2 bin=$3
@@ -104,6 +105,45 @@ set +e
 "$bin/tfmb-heat" solidmesh.h5 imported.h5 model.h5 -o x.h5 2> heat-refused.txt; rc=$?
 set -e
 [ $rc -eq 3 ] || fail "tfmb-heat convection on an import without heat transfer coefficient: exit $rc"
+
+# Wall quantities another code writes as point arrays (here the original traces put on their
+# nodes: wall shear, heat flux, heat transfer coefficient, recovery temperature), named by
+# --field: tfmb-heat's convection condition (the model's convection_radiation) then runs on the
+# import and tfmb-loads includes the shear. A node where two walls meet holds one value in a point
+# array and each wall's own in the original, so the results agree to those corners' share:
+# temperatures 1e-5 K and nodal forces 3e-5 of the largest measured; checked within 1e-3 K and
+# 1e-3.
+/usr/bin/python3 - <<'PY'
+import h5py, meshio, numpy as np
+m = meshio.read("flow.vtu")
+f = h5py.File("flow.h5")
+arrays = {k: np.zeros(len(m.points)) for k in ("htc", "taw", "tau", "qw")}
+for w in f["/walls"]:
+    node = f[f"/walls/{w}/node"][()]
+    for key, name in (("htc", "heat_transfer_coefficient"), ("taw", "adiabatic_wall_temperature"),
+                      ("tau", "wall_shear"), ("qw", "heat_flux")):
+        arrays[key][node] = f[f"/walls/{w}/{name}"][()]
+m.point_data.update(arrays)
+m.write("flow-walls.vtu")
+PY
+"$convert" import-flow flow-walls.vtu --model model.h5 -o imported-walls.h5 --converged \
+  --field heat_transfer_coefficient=htc --field adiabatic_wall_temperature=taw \
+  --field wall_shear=tau --field heat_flux=qw 2> walls.log || { cat walls.log; fail "import with wall fields"; }
+grep -q "not in the source" walls.log && fail "wall fields named by --field said absent"
+"$bin/tfmb-heat" solidmesh.h5 flow.h5 model.h5 -o thermal-convection.h5 > /dev/null 2>&1 || fail "tfmb-heat (convection) on the original"
+"$bin/tfmb-heat" solidmesh.h5 imported-walls.h5 model.h5 -o thermal-convection-imported.h5 > heat2.txt 2>&1 \
+  || { cat heat2.txt; fail "tfmb-heat (convection) on the import with wall fields"; }
+"$bin/tfmb-loads" forces imported-walls.h5 model.h5 -o loads-walls.h5 > /dev/null 2>&1 || fail "tfmb-loads on the import with wall fields"
+/usr/bin/python3 - <<'PY' || fail "results of the import with wall fields"
+import h5py, numpy as np
+ta = h5py.File("thermal-convection.h5")["/fields/point/temperature"][()]
+tb = h5py.File("thermal-convection-imported.h5")["/fields/point/temperature"][()]
+assert np.abs(ta - tb).max() < 1e-3, np.abs(ta - tb).max()
+a, b = h5py.File("loads.h5"), h5py.File("loads-walls.h5")
+for flap in a["/flaps"]:
+    fa, fb = a[f"/flaps/{flap}/nodal_force"][()], b[f"/flaps/{flap}/nodal_force"][()]
+    assert np.abs(fa - fb).max() <= 1e-3 * np.abs(fa).max(), flap
+PY
 
 # The same solution as OpenFOAM's foamToVTK writes a 2D case: one cell layer (hexahedra, wedges)
 # between z = 0 and z = 0.1, OpenFOAM's names; and as cell data only.
