@@ -7,7 +7,8 @@
 # (wall-temperature condition; with the wall quantities named by --field, convection) then read.
 # The same solution as OpenFOAM writes a 2D case (one layer of hexahedra and wedges, fields p, T,
 # U, rho, nut) and as cell data only imports too. The flow mesh goes through .su2 and .msh and
-# comes back with its kinds, flaps and sides by --model.
+# comes back with its kinds, flaps and sides by --model, and from a VTU without boundaries, cut
+# along the model's domain (--cut-by-model).
 #   test_import_flow.sh SOURCE_DIR SCRATCH_DIR BIN_DIR
 set -euo pipefail
 src=$1 run=$2 bin=$3
@@ -228,10 +229,17 @@ import meshio; m = meshio.read('flow.vtu'); m.points[:, 0] += 5.0; m.write('move
 set -e
 [ ! -e bad.h5 ] && [ ! -e bad.h5.tmp ] || fail "a failed import left a file"
 
-# The flow mesh through .su2 and .msh and back, kinds, flaps and sides from the model.
-for ext in su2 msh; do
-  "$convert" export flowmesh.h5 -o "mesh.$ext" 2> /dev/null
-  "$convert" import "mesh.$ext" --model model.h5 -o "mesh-$ext.h5"
+# The flow mesh through .su2 and .msh and back, kinds, flaps and sides from the model; and
+# through a VTU without boundaries, cut along the model's domain boundaries (--cut-by-model).
+"$convert" export flowmesh.h5 -o mesh.vtu 2> /dev/null
+set +e
+"$convert" import mesh.vtu -o bad.h5 2> err.txt; rc=$?
+set -e
+[ $rc -eq 3 ] && grep -q "cut-by-model" err.txt || fail "a mesh without boundaries: exit $rc, $(cat err.txt)"
+"$convert" import mesh.vtu --model model.h5 --cut-by-model -o mesh-vtu.h5
+for ext in su2 msh vtu; do
+  [ "$ext" = vtu ] || "$convert" export flowmesh.h5 -o "mesh.$ext" 2> /dev/null
+  [ "$ext" = vtu ] || "$convert" import "mesh.$ext" --model model.h5 -o "mesh-$ext.h5"
   /usr/bin/python3 - flowmesh.h5 "mesh-$ext.h5" <<'PY' || fail "flowmesh round trip through .$ext"
 import sys
 import h5py
