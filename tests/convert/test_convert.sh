@@ -128,7 +128,19 @@ assert x[0] == 0.0 and x[-1] == 2.0 and np.all(np.diff(x) > 0)  # domain on the 
 assert np.allclose(f["/fields/point/mach"][()], 100.0 / np.sqrt(1.4 * 287.0 * 300.0))
 assert np.all(f["/walls/upper_wall/wall_shear"][()] == 0.0)
 PY
+# What a reader of flow.h5 refuses is not written: a non-positive pressure is refused naming the
+# node (exit 3), a negative k (optional) is left out, said so.
+/usr/bin/python3 -c "
+import meshio, numpy as np
+m = meshio.read('uniform.vtu'); n = len(m.points)
+m.point_data['k'] = np.linspace(-1.0, 1.0, n); m.write('uniform-k.vtu')
+m.point_data['p'][3] = -1.0; m.write('negative-p.vtu')"
+"$bin/tfmb-convert" import-flow uniform-k.vtu --model model.h5 -o uniform-k.h5 2> err.txt || fail "import with a negative k"
+grep -q "turbulent_kinetic_energy from 'k' not written: -1 at node 0" err.txt || fail "negative k not said: $(cat err.txt)"
+/usr/bin/python3 -c "import h5py; assert 'turbulent_kinetic_energy' not in h5py.File('uniform-k.h5')['/fields/point']"
 set +e
+"$bin/tfmb-convert" import-flow negative-p.vtu --model model.h5 -o negative-p.h5 2> err.txt; rc=$?
+[ $rc -eq 3 ] && grep -q "negative-p.vtu: pressure -1 <= 0 at node 3" err.txt || fail "negative pressure: exit $rc, $(cat err.txt)"
 "$bin/tfmb-convert" import-flow uniform.vtu --model model-gap.h5 -o gap.h5 2> err.txt; rc=$?
 set -e
 [ $rc -eq 3 ] && grep -q "lower_wall form 2 separate runs (a gap at (1.25, 0) m)" err.txt \
