@@ -141,6 +141,13 @@ grep -q "turbulent_kinetic_energy from 'k' not written: -1 at node 0" err.txt ||
 set +e
 "$bin/tfmb-convert" import-flow negative-p.vtu --model model.h5 -o negative-p.h5 2> err.txt; rc=$?
 [ $rc -eq 3 ] && grep -q "negative-p.vtu: pressure -1 <= 0 at node 3" err.txt || fail "negative pressure: exit $rc, $(cat err.txt)"
+/usr/bin/python3 -c "
+import meshio, numpy as np
+m = meshio.read('uniform.vtu')
+meshio.Mesh(m.points, [('polygon', np.array([[0, 1, 2, 3, 4]]))] + [(c.type, c.data) for c in m.cells],
+            point_data=m.point_data).write('polygon.vtu')"
+"$bin/tfmb-convert" import-flow polygon.vtu --model model.h5 -o polygon.h5 2> err.txt; rc=$?
+[ $rc -eq 3 ] && grep -q "cell type 'polygon' is not supported" err.txt || fail "a polygon cell: exit $rc, $(cat err.txt)"
 "$bin/tfmb-convert" import-flow uniform.vtu --model model-gap.h5 -o gap.h5 2> err.txt; rc=$?
 set -e
 [ $rc -eq 3 ] && grep -q "lower_wall form 2 separate runs (a gap at (1.25, 0) m)" err.txt \
