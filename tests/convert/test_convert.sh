@@ -34,6 +34,15 @@ PY
 "$bin/tfmb-convert" export flowmesh.h5 -o flowmesh.vtu
 /usr/bin/python3 -c "import meshio; m = meshio.read('flowmesh.vtu'); assert len(m.cells) == 2"
 
+# A physical curve and the physical surface may share a tag number in gmsh: the lines take the
+# curve's name (the surface's name was taken before: "boundary 'fluid': cannot infer its kind").
+sed 's/Physical Curve("inflow")/Physical Curve("inflow", 1)/; s/Physical Surface("fluid")/Physical Surface("fluid", 1)/' \
+  "$data/mixed_channel.geo" > clash.geo
+gmsh -2 -format msh22 clash.geo -o clash.msh > /dev/null 2>&1
+"$bin/tfmb-convert" import clash.msh -o clash.h5 2> err.txt || fail "shared physical tag: $(cat err.txt)"
+/usr/bin/python3 -c "import h5py; assert sorted(h5py.File('clash.h5')['/mesh/boundaries']) == ['inflow', 'lower_wall', 'outflow', 'upper_wall']" \
+  || fail "shared physical tag: boundary names"
+
 # Export to .su2 and .msh keeps every boundary by name (SU2 marker, gmsh physical curve);
 # importing the file back gives the same points, cells and boundaries (edges in the same order).
 for ext in su2 msh; do
