@@ -163,6 +163,35 @@ set -e
   || fail "a wall in two runs: exit $rc, $(cat err.txt)"
 [ ! -e gap.h5 ] || fail "a refused import-flow left a file"
 
+# Identical runs give byte-identical files (no times stored: make's hash checks see no change).
+for i in 1 2; do
+  "$bin/tfmb-convert" import mixed.msh -o again.h5 && cp again.h5 "again-$i.h5"
+  "$bin/tfmb-convert" import-flow uniform.vtu --model model.h5 -o again-flow.h5 2> /dev/null && cp again-flow.h5 "again-flow-$i.h5"
+  sleep 1.1
+done
+cmp -s again-1.h5 again-2.h5 && cmp -s again-flow-1.h5 again-flow-2.h5 || fail "identical runs, different bytes"
+
+# A write that fails (a file-size limit: write() fails with EFBIG, as on a full disk) ends with
+# exit 4 and a last line naming the output and the system's reason, and leaves nothing behind:
+# exports (staging folder) and HDF5 outputs (built in memory, written by the script: the HDF5
+# library's own failed write crashed h5py).
+/usr/bin/python3 - "$bin/tfmb-convert" <<'PY' || fail "failed writes"
+import os, resource, signal, subprocess, sys
+def limit():
+    signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+    resource.setrlimit(resource.RLIMIT_FSIZE, (0, 0))
+before = set(os.listdir("."))
+for args, out in ((["export", "flowmesh.h5", "-o", "full.su2"], "full.su2"),
+                  (["export", "flowmesh.h5", "-o", "full.msh"], "full.msh"),
+                  (["export", "flowmesh.h5", "-o", "full.vtu"], "full.vtu"),
+                  (["import", "mixed.msh", "-o", "full.h5"], "full.h5"),
+                  (["import-flow", "uniform.vtu", "--model", "model.h5", "-o", "full-flow.h5"], "full-flow.h5")):
+    done = subprocess.run([sys.argv[1]] + args, preexec_fn=limit, capture_output=True, text=True)
+    last = done.stderr.strip().splitlines()[-1]
+    assert done.returncode == 4 and last == f"tfmb-convert: error: {out}: File too large", (args, done.returncode, done.stderr)
+    assert set(os.listdir(".")) == before, (args, set(os.listdir(".")) - before)
+PY
+
 # Bad inputs: exit 3 and a message naming the problem.
 set +e
 "$bin/tfmb-convert" import no-such.msh -o x.h5 2> err.txt; [ $? -eq 3 ] || fail "missing file not exit 3"
