@@ -214,6 +214,18 @@ for key, scale in (("mass_flow", None), ("thrust_x", thrust), ("thrust_y", thrus
     assert abs(x - y) <= 1e-4 * (scale or abs(x)), (key, x, y)
 PY
 
+# Its flow mesh through .su2 with --model comes back axisymmetric (the model's geometry), the
+# axis boundary of kind axis.
+"$convert" export bmg/flowmesh.h5 -o bmg/mesh.su2 2> /dev/null
+"$convert" import bmg/mesh.su2 --model bmg/model.h5 -o bmg/mesh-back.h5 || fail "axisymmetric mesh import"
+/usr/bin/python3 -c "
+import h5py, numpy as np
+a, b = h5py.File('bmg/flowmesh.h5'), h5py.File('bmg/mesh-back.h5')
+assert b.attrs['geometry'] == 'axisymmetric' and b['/mesh/boundaries/axis'].attrs['kind'] == 'axis'
+for n in a['/mesh/boundaries']:
+    assert np.array_equal(a[f'/mesh/boundaries/{n}/edges'][()], b[f'/mesh/boundaries/{n}/edges'][()]), n" \
+  || fail "axisymmetric mesh round trip"
+
 # Bad inputs: exit 3, one line naming the file and what is wrong, no file left.
 set +e
 "$convert" import-flow flow.vtu --model flow.h5 -o bad.h5 2> err.txt; rc=$?
