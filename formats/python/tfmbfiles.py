@@ -197,3 +197,27 @@ def attr(f, key, name, type=float, default=_REQUIRED):
     if not np.isfinite(value) or value != int(value):
         raise BadInput.at(f, key, f"attribute '{name}' is {value}, expected an integer")
     return bool(int(value)) if type is bool else type(int(value))
+
+
+def throat_height(f):
+    """Of an open model file: the smallest distance between the inner walls of the upper and the
+    lower flaps [m] (the throat height per unit depth of a planar nozzle, the discharge
+    coefficient's reference), or None when the model has no upper and lower flaps."""
+    halves = {"upper": [], "lower": []}
+    for name in members(f, "flaps") if "flaps" in f else []:
+        half = attr(f, f"flaps/{name}", "half", str, default="")
+        if half in halves and f"flaps/{name}/inner_wall" in f:
+            halves[half].append(dataset(f, f"flaps/{name}/inner_wall", shape=(None, 2)))
+    if not halves["upper"] or not halves["lower"]:
+        return None
+    best = np.inf
+    for upper in halves["upper"]:
+        for lower in halves["lower"]:
+            a, b = lower[:-1], lower[1:]
+            ab = b - a
+            length2 = np.maximum((ab * ab).sum(axis=1), 1e-300)
+            for point in upper:
+                t = np.clip(((point - a) * ab).sum(axis=1) / length2, 0.0, 1.0)
+                d = np.hypot(*(a + t[:, None] * ab - point).T)
+                best = min(best, float(d.min()))
+    return best

@@ -132,8 +132,14 @@ Schema model_schema() {
                                {"inflow", "farfield", "outflow", "wall", "slip_wall", "symmetry", "axis"}));
   s.attributes.push_back(iattr("/domain/boundaries/*", "order",
                                "position in the counter-clockwise boundary loop (0-based)", 0));
-  s.attributes.push_back(sattr("/domain/boundaries/*", "flap", "flap whose wall this is", {}, false));
-  s.attributes.push_back(sattr("/domain/boundaries/*", "side", "side of the flap", {"inner", "outer", "end"}, false));
+  // A flap's wall names both (tfmb-mesh copies them to the mesh boundaries, where the mesh
+  // block's rule asks for both together).
+  AttributeRule flap = sattr("/domain/boundaries/*", "flap", "flap whose wall this is", {}, false);
+  flap.required_with = "side";
+  s.attributes.push_back(flap);
+  AttributeRule side = sattr("/domain/boundaries/*", "side", "side of the flap", {"inner", "outer", "end"}, false);
+  side.required_with = "flap";
+  s.attributes.push_back(side);
   s.datasets.push_back(f64("/domain/boundaries/*/points", {"nb", "2"}, "m",
                            "boundary piece in loop direction (domain on the left)"));
   // Flow conditions.

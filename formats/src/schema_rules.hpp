@@ -95,9 +95,18 @@ inline void add_mesh(Schema& s) {
   s.attributes.push_back(sattr("/mesh/boundaries/*", "kind", "boundary condition kind",
                                {"inflow", "farfield", "outflow", "wall", "slip_wall", "symmetry",
                                 "axis", "solid_inner", "solid_outer", "solid_end"}));
-  s.attributes.push_back(sattr("/mesh/boundaries/*", "flap", "flap a wall belongs to", {}, false));
-  s.attributes.push_back(sattr("/mesh/boundaries/*", "side", "wetted side of the flap",
-                               {"inner", "outer", "end"}, false));
+  // A boundary that is a flap's wall names the flap and the side: tfmb-loads and tfmb-heat find
+  // a flap's walls by the two together (a wall without them, e.g. the nacelle, is no flap's).
+  AttributeRule flap = sattr("/mesh/boundaries/*", "flap",
+                             "flap whose wall this is (every wall of a model flap has it: "
+                             "tfmb-loads and tfmb-heat find a flap's walls by flap and side)",
+                             {}, false);
+  flap.required_with = "side";
+  s.attributes.push_back(flap);
+  AttributeRule side = sattr("/mesh/boundaries/*", "side", "wetted side of the flap",
+                             {"inner", "outer", "end"}, false);
+  side.required_with = "flap";
+  s.attributes.push_back(side);
 }
 
 Schema model_schema();

@@ -193,6 +193,42 @@ INSTANTIATE_TEST_SUITE_P(
     param_name);
 
 // The executable itself: exit 3 on a bad file, 0 on a good one, 2 on a usage error.
+// A boundary names its flap and its side together (tfmb-loads and tfmb-heat find a flap's walls
+// by both; tfmb-heat took a flap wall without a side as unwetted): one without the other is
+// refused by every reader and by tfmb-check, naming the boundary; neither (a wall of no flap) is
+// fine. The model's domain boundaries likewise.
+TEST(FlapAndSide, AreRequiredTogether) {
+  const auto dir = test::scratch_dir();
+  for (const std::string kind : {"flowmesh", "solidmesh", "flow", "thermal", "model"}) {
+    const Schema* schema = find_schema(kind);
+    ASSERT_NE(schema, nullptr);
+    const std::string object = kind == "model" ? "/domain/boundaries/sample" : "/mesh/boundaries/sample";
+    for (const std::string dropped : {"side", "flap"}) {
+      Document document = example_document(*schema);
+      ASSERT_TRUE(document.attributes[object].count(dropped)) << kind << " " << dropped;
+      document.attributes[object].erase(dropped);
+      const auto file = dir / (kind + "-no-" + dropped + ".h5");
+      write_document(document, file);
+      try {
+        open_checked(file, kind);
+        ADD_FAILURE() << kind << ": a boundary without '" << dropped << "' was accepted";
+      } catch (const BadInput& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find(file.string() + ": " + object + ": missing attribute '" + dropped +
+                               "', required with attribute '"),
+                  std::string::npos)
+            << message;
+      }
+    }
+    Document neither = example_document(*schema);
+    neither.attributes[object].erase("side");
+    neither.attributes[object].erase("flap");
+    const auto file = dir / (kind + "-neither.h5");
+    write_document(neither, file);
+    EXPECT_NO_THROW(open_checked(file, kind)) << kind;
+  }
+}
+
 TEST(FormatsCheckExecutable, ExitCodes) {
   const auto dir = test::scratch_dir();
   const std::string check = std::string(TFMB_BIN_DIR) + "/tfmb-check";

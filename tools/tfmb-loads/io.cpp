@@ -27,17 +27,51 @@ Side parse_side(const formats::Flow& file, const std::string& object, const std:
   file.fail(object, "side '" + side + "' is not inner, outer or end");
 }
 
+// Which side of a trace the fluid is on from the flow's mesh, for a file without wall normals
+// (they are optional; flow 1.4 added them): +1 where the cells along the trace lie to the left of
+// its direction, -1 to the right, by a length-weighted vote of each trace edge's cell (its centre
+// against the edge; the cells' orientation is not relied on).
+double fluid_side_from_mesh(const formats::Flow& flow, const formats::FlowWall& wall) {
+  using Edge = std::pair<std::int64_t, std::int64_t>;
+  auto edge = [](std::int64_t a, std::int64_t b) { return a < b ? Edge{a, b} : Edge{b, a}; };
+  std::map<Edge, std::size_t> trace_edge;
+  for (std::size_t k = 0; k + 1 < wall.node.size(); ++k)
+    trace_edge[edge(wall.node[k], wall.node[k + 1])] = k;
+  const auto& points = flow.mesh.points;
+  auto point = [&](std::int64_t n) { return Vec2(points(n, 0), points(n, 1)); };
+  double vote = 0.0;
+  auto visit = [&](const h5::MatrixXiR& cells) {
+    for (Eigen::Index c = 0; c < cells.rows(); ++c) {
+      Vec2 centre = Vec2::Zero();
+      for (Eigen::Index i = 0; i < cells.cols(); ++i) centre += point(cells(c, i));
+      centre /= static_cast<double>(cells.cols());
+      for (Eigen::Index i = 0; i < cells.cols(); ++i) {
+        const auto it = trace_edge.find(edge(cells(c, i), cells(c, (i + 1) % cells.cols())));
+        if (it == trace_edge.end()) continue;
+        const Vec2 a = point(wall.node[it->second]), b = point(wall.node[it->second + 1]);
+        const Vec2 e = b - a, r = centre - a;
+        const double cross = e.x() * r.y() - e.y() * r.x();
+        if (cross != 0.0) vote += (cross > 0.0 ? 1.0 : -1.0) * e.norm();
+      }
+    }
+  };
+  visit(flow.mesh.triangles);
+  visit(flow.mesh.quads);
+  if (vote == 0.0) {
+    flow.fail("/walls/" + wall.name,
+              "no /normal, and no mesh cell along the trace tells on which side the fluid is");
+  }
+  return vote > 0.0 ? 1.0 : -1.0;
+}
+
 // Which side of a trace the fluid is on, from the flow file's wall normals (flow 1.4: unit
 // normals leaving the fluid): the sign that turns the segments' left normals out of the solid,
-// i.e. against the flow's normals, by a length-weighted vote over the segments.
+// i.e. against the flow's normals, by a length-weighted vote over the segments; from the mesh's
+// cells along the trace where the file has no normals.
 double fluid_side(const formats::Flow& flow, const formats::FlowWall& wall,
                   const WallTrace& trace) {
   const std::string group = "/walls/" + wall.name;
-  if (wall.normal.empty()) {
-    flow.fail(group,
-              "no /normal: tfmb-loads needs each flap wall's normal (flow 1.4) to know which side "
-              "the fluid is on; re-run tfmb-flow, or have the external flow code write it");
-  }
+  if (wall.normal.empty()) return fluid_side_from_mesh(flow, wall);
   double vote = 0.0;
   for (std::size_t k = 0; k < trace.segment_count(); ++k) {
     const Vec2 into_wall = wall.normal[k] + wall.normal[k + 1];

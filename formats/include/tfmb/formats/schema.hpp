@@ -27,6 +27,9 @@ struct AttributeRule {
   std::string name;
   AttrType type = AttrType::string;
   bool required = true;
+  // Not required on its own, but on every object that has this other attribute (e.g. a
+  // boundary's `side` wherever it names a `flap`, and the reverse).
+  std::string required_with;
   std::vector<std::string> allowed;    // for strings: allowed values (empty: any)
   std::optional<double> minimum;       // for numbers: inclusive bounds
   std::optional<double> maximum;
