@@ -4,7 +4,8 @@
 # that two makes really overlap:
 #  1. two makes started at once: one runs, the other is refused at once with one line naming the
 #     run that holds the folder; model.h5 is whole and made once;
-#  2. RUN_LOCK=wait: the second waits, says so, and then finds the model up to date;
+#  2. `clean` meanwhile is refused too; RUN_LOCK=wait: the second waits, says so, and then finds
+#     the model up to date;
 #  3. a run killed with kill -9 (the whole run: make, stage, tool) leaves its .run.lock behind,
 #     which does not block the next run;
 #  4. the makes of a run killed with kill -9 while its stage still runs: the folder stays locked
@@ -14,6 +15,8 @@ src="$1"; scratch="$2"; bin="$3"
 rm -rf "$scratch"; mkdir -p "$scratch"
 run="$scratch/run"
 fail() { echo "FAIL: $*" >&2; exit 1; }
+# A failure leaves no make of this test running into the next run of the test.
+trap 'kill -- $(jobs -p) 2> /dev/null' EXIT
 
 cat > "$scratch/slow-input" <<EOF
 #!/usr/bin/env bash
@@ -45,8 +48,9 @@ check_model() {
 }
 
 # 1. Two makes at once.
-SLOW_SECONDS=3 mk model > "$scratch/a.log" 2>&1 & a=$!
-SLOW_SECONDS=3 mk model > "$scratch/b.log" 2>&1 & b=$!
+# (the stand-in holds the folder 6 s: the later make must find it held even on a busy machine)
+SLOW_SECONDS=6 mk model > "$scratch/a.log" 2>&1 & a=$!
+SLOW_SECONDS=6 mk model > "$scratch/b.log" 2>&1 & b=$!
 rc_a=0; wait $a || rc_a=$?
 rc_b=0; wait $b || rc_b=$?
 if [ $rc_a -eq 0 ] && [ $rc_b -ne 0 ]; then refused="$scratch/b.log"
@@ -66,6 +70,10 @@ mk clean > /dev/null 2>&1 || fail "2: clean"
 [ -e "$run/model.h5" ] && fail "2: clean left model.h5"
 SLOW_SECONDS=3 mk model > "$scratch/a.log" 2>&1 & a=$!
 wait_held
+# clean is a run in the folder too: refused while the model is being made
+mk clean > "$scratch/clean.log" 2>&1 && fail "2: clean ran while the folder was in use"
+grep -q "is in use by another run" "$scratch/clean.log" || { cat "$scratch/clean.log"; fail "2: clean"; }
+grep -qs "make CASE=config1 model" "$run/.run.lock" || fail "2: the refused clean removed the run folder"
 start=$(date +%s%N)
 SLOW_SECONDS=3 mk RUN_LOCK=wait model > "$scratch/b.log" 2>&1 || { cat "$scratch/b.log"; fail "2: the waiting run failed"; }
 waited=$(( ($(date +%s%N) - start) / 1000000 ))
@@ -73,7 +81,7 @@ wait $a || { cat "$scratch/a.log"; fail "2: the first run failed"; }
 grep -q "waiting for it to end" "$scratch/b.log" || { cat "$scratch/b.log"; fail "2: the waiting run did not say so"; }
 check_model 2
 [ "$(stage_runs)" -eq 1 ] || fail "2: the input stage ran $(stage_runs) times (the waiting run redid it)"
-echo "2. RUN_LOCK=wait: the second run waited ${waited} ms and found the model up to date"
+echo "2. clean refused meanwhile; RUN_LOCK=wait: the second run waited ${waited} ms and found the model up to date"
 
 # 3. The whole run killed with kill -9: the lock file stays and locks nothing.
 mk clean > /dev/null 2>&1 || fail "3: clean"
