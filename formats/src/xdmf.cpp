@@ -114,6 +114,10 @@ class GridWriter {
   // every float64 and int64 dataset of n rows of the group as a Node attribute.
   std::string line_grid(const std::string& name, const std::string& group,
                         const std::vector<std::string>& coordinates);
+  // A mesh boundary (rows of two point ids into `points`) as its own polyline grid named after
+  // it, with the mesh point id of each of its nodes as `node`.
+  std::string boundary_grid(const std::string& name, const h5::MatrixXiR& edges,
+                            const h5::MatrixXdR& points);
 
   const h5::Reader& file_;
   std::string data_file_;
@@ -232,6 +236,44 @@ std::string GridWriter::line_grid(const std::string& name, const std::string& gr
   return xml.str();
 }
 
+std::string GridWriter::boundary_grid(const std::string& name, const h5::MatrixXiR& edges,
+                                      const h5::MatrixXdR& points) {
+  beyond_meshio_ = true;
+  // The boundary's own points, in the order its edges first reach them, copied into the sidecar
+  // as text (exact doubles; a few hundred for a wall): a grid on the file's /mesh/points would
+  // hand ParaView every mesh point once more per boundary, and it cannot read a selection of
+  // rows (its reader skips Function and HyperSlab items of an attribute).
+  std::vector<std::int64_t> used;
+  std::map<std::int64_t, std::size_t> local;
+  for (Eigen::Index e = 0; e < edges.rows(); ++e) {
+    for (Eigen::Index k = 0; k < 2; ++k) {
+      if (local.emplace(edges(e, k), used.size()).second)
+        used.push_back(edges(e, k));
+    }
+  }
+  std::ostringstream xml;
+  xml << "    <Grid Name=\"" << xml_escape(name) << "\" GridType=\"Uniform\">\n"
+      << "      <Topology TopologyType=\"Polyline\" NodesPerElement=\"2\" NumberOfElements=\""
+      << edges.rows() << "\">\n        <DataItem Dimensions=\"" << edges.rows()
+      << " 2\" NumberType=\"Int\" Format=\"XML\">";
+  for (Eigen::Index e = 0; e < edges.rows(); ++e)
+    xml << (e ? " " : "") << local.at(edges(e, 0)) << " " << local.at(edges(e, 1));
+  xml << "</DataItem>\n      </Topology>\n      <Geometry GeometryType=\"XY\">\n        <DataItem "
+      << "Dimensions=\"" << used.size() << " 2\" NumberType=\"Float\" Precision=\"8\" "
+      << "Format=\"XML\">" << std::setprecision(17);
+  for (std::size_t k = 0; k < used.size(); ++k) {
+    const auto row = static_cast<Eigen::Index>(used[k]);
+    xml << (k ? " " : "") << points(row, 0) << " " << points(row, 1);
+  }
+  xml << "</DataItem>\n      </Geometry>\n      <Attribute Name=\"node\" AttributeType=\"Scalar\" "
+      << "Center=\"Node\">\n        <DataItem Dimensions=\"" << used.size()
+      << "\" NumberType=\"Int\" Precision=\"8\" Format=\"XML\">";
+  for (std::size_t k = 0; k < used.size(); ++k)
+    xml << (k ? " " : "") << used[k];
+  xml << "</DataItem>\n      </Attribute>\n    </Grid>\n";
+  return xml.str();
+}
+
 std::vector<std::string> GridWriter::grids(const std::string& name) {
   std::vector<std::string> out;
   if (file_.exists("/mesh/points")) {
@@ -262,6 +304,21 @@ std::vector<std::string> GridWriter::grids(const std::string& name) {
   lines("/walls", {"x", "y"});
   lines("/walls", {"x0"});
   lines("/flaps", {"position"});
+  // The mesh's boundaries, each its own polyline named after it, so that ParaView lists every
+  // wall by its flap and side ("upper_convergent_inner") and every far-field piece by its name. A
+  // flow file shows its walls as the traces above, with their fields, and no boundaries besides.
+  if (file_.exists("/mesh/points") && file_.is_group("/mesh/boundaries") &&
+      !file_.is_group("/walls")) {
+    const h5::MatrixXdR points = file_.read_matrix("/mesh/points", {}, 2);
+    for (const auto& boundary : file_.children("/mesh/boundaries")) {
+      const std::string edges_path = "/mesh/boundaries/" + boundary + "/edges";
+      if (!file_.is_dataset(edges_path))
+        continue;
+      const auto edges = file_.read_index_matrix(edges_path, {}, 2, 0, points.rows());
+      if (edges.rows() > 0)
+        out.push_back(boundary_grid(boundary, edges, points));
+    }
+  }
   return out;
 }
 

@@ -3,13 +3,17 @@
 #include <sys/ioctl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
+#include <condition_variable>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <mutex>
 #include <sstream>
+#include <thread>
 
 namespace tfmb {
 
@@ -100,9 +104,16 @@ Progress::~Progress() { finish(); }
 std::string Progress::text(std::size_t done, double seconds) const {
   std::ostringstream line;
   line << label_ << ' ' << done << '/' << total_ << ' ' << settings_.unit;
+  const std::string activity = activity_.empty() ? std::string()
+                                                 : ", in " + activity_ + " for " +
+                                                       format_duration(seconds - activity_start_);
+  if (!settings_.time_left) {
+    line << ", " << format_duration(seconds) << " so far" << activity;
+    return line.str();
+  }
   const double rate = seconds > 0.0 ? static_cast<double>(done) / seconds : 0.0;
   if (done == 0 || rate <= 0.0) {
-    line << ", ETA ?";
+    line << ", ETA ?" << activity;
     return line.str();
   }
   // a rate below one per second reads better as the time each takes
@@ -116,8 +127,47 @@ std::string Progress::text(std::size_t done, double seconds) const {
   }
   const double left = done >= total_ ? 0.0 : static_cast<double>(total_ - done) / rate;
   line << ", " << buffer << ", ETA " << (settings_.total_is_limit ? "<= " : "")
-       << format_duration(left);
+       << format_duration(left) << activity;
   return line.str();
+}
+
+void Progress::update_while(std::size_t done, const std::string& activity,
+                            const std::function<void()>& work) {
+  activity_ = activity;
+  activity_start_ =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  update(done);
+  // The helper wakes at the terminal's redraw pace, or often enough for the interval of plain
+  // lines (update() itself keeps to the interval).
+  const double pace = logger_.is_terminal() ? 0.2 : std::clamp(interval_, 0.2, 1.0);
+  std::mutex mutex;
+  std::condition_variable wake;
+  bool stop = false;
+  std::thread helper([&] {
+    std::unique_lock lock(mutex);
+    while (!wake.wait_for(lock, std::chrono::duration<double>(pace), [&] { return stop; }))
+      update(done);
+  });
+  // Stops and joins the helper however work() ends.
+  struct Join {
+    std::mutex& mutex;
+    std::condition_variable& wake;
+    bool& stop;
+    std::thread& helper;
+    ~Join() {
+      {
+        const std::lock_guard lock(mutex);
+        stop = true;
+      }
+      wake.notify_one();
+      helper.join();
+    }
+  };
+  {
+    const Join join{mutex, wake, stop, helper};
+    work();
+  }
+  activity_.clear();
 }
 
 void Progress::update(std::size_t done) {

@@ -2,8 +2,11 @@
 // terminal, the rate and the time left, nothing when quiet.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <sstream>
+#include <stdexcept>
 #include <string>
+#include <thread>
 
 #include "tfmb/common/log.hpp"
 
@@ -102,4 +105,32 @@ TEST(Progress, QuietOrEmptyWritesNothing) {
   empty.update_at(0, 1.0);
   empty.finish();
   EXPECT_EQ(out.str(), "");
+}
+
+TEST(Progress, TimeSoFarInsteadOfATimeLeft) {
+  std::ostringstream out;
+  const tfmb::Logger log("tfmb-x", tfmb::Verbosity::normal, out);
+  const tfmb::Progress phases(log, "flow mesh", 4,
+                              {.unit = "phases", .interval = 10.0, .time_left = false});
+  EXPECT_EQ(phases.text(1, 26.0), "flow mesh 1/4 phases, 26 s so far");
+  EXPECT_EQ(phases.text(0, 0.0), "flow mesh 0/4 phases, 0 s so far");
+}
+
+// A long call without a count of its own: the helper thread writes lines while it runs, naming
+// it and the time spent in it; afterwards the line is as before; what the call throws comes out.
+TEST(Progress, UpdateWhileKeepsTheLineGoing) {
+  std::ostringstream out;
+  const tfmb::Logger log("tfmb-x", tfmb::Verbosity::normal, out);
+  tfmb::Progress progress(log, "flow mesh", 4,
+                          {.unit = "phases", .interval = 0.0, .time_left = false});
+  progress.update_while(1, "meshing",
+                        [] { std::this_thread::sleep_for(std::chrono::milliseconds(900)); });
+  const std::string text = out.str();
+  // one line as it starts, then one every 0.2 s at interval 0 (at least two in 0.9 s on a busy
+  // machine)
+  EXPECT_GE(count(text, "tfmb-x: progress: flow mesh 1/4 phases, "), 3) << text;
+  EXPECT_EQ(count(text, ", in meshing for "), count(text, "\n")) << text;
+  EXPECT_EQ(progress.text(2, 1.0), "flow mesh 2/4 phases, 1 s so far");
+  EXPECT_THROW(progress.update_while(2, "meshing", [] { throw std::runtime_error("gmsh"); }),
+               std::runtime_error);
 }

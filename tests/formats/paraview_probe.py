@@ -1,5 +1,5 @@
 """Run by pvpython (ParaView's Python) from test_paraview_sidecars.py: opens each XDMF sidecar
-given with ParaView's XDMF 3 reader, writes what ParaView sees (per leaf dataset: cell types,
+given with ParaView's XDMF 3 readers (S, and T for the grids' names), writes what ParaView sees (per leaf dataset: cell types,
 point bounds, every array with its components and per-component range; the time steps) to a JSON
 file, and renders one field to a PNG.
 
@@ -11,24 +11,33 @@ import sys
 
 from paraview import servermanager
 from paraview.simple import ColorBy, GetActiveViewOrCreate, ResetCamera, SaveScreenshot, Show
-from paraview.simple import Xdmf3ReaderS
+from paraview.simple import Xdmf3ReaderS, Xdmf3ReaderT
+from vtkmodules.vtkCommonDataModel import vtkCompositeDataSet
 
 
-def leaves(data):
-    """The leaf datasets of what the reader returns (a grid, a multiblock of multipieces)."""
+def block_name(data, i):
+    """The name ParaView gives block or piece i (the XDMF grid's Name), or None."""
+    if not data.HasMetaData(i):
+        return None
+    return data.GetMetaData(i).Get(vtkCompositeDataSet.NAME())
+
+
+def leaves(data, name=None):
+    """The leaf datasets of what the reader returns (a grid, a multiblock of multipieces), each
+    with the name of the innermost named block holding it."""
     if data is None:
         return
     if data.IsA("vtkMultiPieceDataSet"):
         for i in range(data.GetNumberOfPieces()):
-            yield from leaves(data.GetPiece(i))
+            yield from leaves(data.GetPiece(i), block_name(data, i) or name)
     elif data.IsA("vtkMultiBlockDataSet"):
         for i in range(data.GetNumberOfBlocks()):
-            yield from leaves(data.GetBlock(i))
+            yield from leaves(data.GetBlock(i), block_name(data, i) or name)
     else:
-        yield data
+        yield name, data
 
 
-def describe(leaf):
+def describe(name, leaf):
     arrays = {}
     for association, field_data in (("point", leaf.GetPointData()), ("cell", leaf.GetCellData())):
         for i in range(field_data.GetNumberOfArrays()):
@@ -41,7 +50,7 @@ def describe(leaf):
                 "ranges": [list(array.GetRange(c)) for c in range(components)],
             }
     cell_types = sorted({leaf.GetCellType(c) for c in range(leaf.GetNumberOfCells())})
-    return {"points": leaf.GetNumberOfPoints(), "cells": leaf.GetNumberOfCells(),
+    return {"name": name, "points": leaf.GetNumberOfPoints(), "cells": leaf.GetNumberOfCells(),
             "cell_types": cell_types, "bounds": list(leaf.GetBounds()), "arrays": arrays}
 
 
@@ -55,7 +64,13 @@ def main():
         reader.UpdatePipeline()
         times = list(reader.TimestepValues) if reader.TimestepValues else []
         report[sidecar] = {"times": times,
-                           "leaves": [describe(l) for l in leaves(servermanager.Fetch(reader))]}
+                           "leaves": [describe(n, l) for n, l in leaves(servermanager.Fetch(reader))]}
+        # Xdmf3ReaderS merges the grids of a spatial collection into unnamed pieces; Xdmf3ReaderT
+        # (and the XDMF Reader) keep each grid a block under its Name, as ParaView lists them.
+        named = Xdmf3ReaderT(FileName=os.path.abspath(sidecar))
+        named.UpdatePipeline()
+        report[sidecar]["named_leaves"] = [describe(n, l)
+                                           for n, l in leaves(servermanager.Fetch(named))]
     reader = Xdmf3ReaderS(FileName=os.path.abspath(field_file))
     view = GetActiveViewOrCreate("RenderView")
     view.ViewSize = [800, 500]

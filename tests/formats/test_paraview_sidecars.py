@@ -5,8 +5,8 @@ structure, strain) and a temporal collection over two iterates; every named arra
 the right number of components and a range equal to the HDF5 data read with h5py (the mixed-unit
 structure fields as one scalar per component, e.g. `bending_moment [N m]`); the flow's pressure
 rendered to a PNG must show the field (many colours over a good part of the picture, not a blank
-view). meshio must still read the sidecars it read before (flowmesh, thermal) and the
-`.meshio.xdmf` variants of flow and structure.
+view). Each boundary of flowmesh and thermal is its own polyline block named
+after it. meshio must read the `.meshio.xdmf` variants of flowmesh, thermal, flow and structure.
 
   test_paraview_sidecars.py SOURCE_DIR BIN_DIR SCRATCH [--run RUN_DIR]
 
@@ -162,6 +162,27 @@ def main():
             if meshes[0]["points"] != h5["/mesh/points"].shape[0]:
                 fail(f"{kind}.xdmf: {meshes[0]['points']} points")
             check_mesh_fields(f"{kind}.xdmf", meshes[0], h5)
+    # flowmesh and thermal: one polyline per mesh boundary, named after it (a flap's wall and
+    # side, a far-field piece), through the boundary's own points; the names as ParaView's
+    # Xdmf3ReaderT lists the blocks (the S reader makes unnamed pieces of them).
+    for kind in ("flowmesh", "thermal"):
+        with h5py.File(f"{run}/{kind}.h5") as h5:
+            named = report.get(f"{run}/{kind}.xdmf", {}).get("named_leaves", [])
+            lines = [l for l in named if set(l["cell_types"]) <= LINES]
+            names = sorted(l["name"] or "" for l in lines)
+            if names != sorted(h5["/mesh/boundaries"]):
+                fail(f"{kind}.xdmf: boundary grids {names}, the file has "
+                     f"{sorted(h5['/mesh/boundaries'])}")
+            for leaf in lines:
+                edges = h5.get(f"/mesh/boundaries/{leaf['name']}/edges")
+                if edges is None:
+                    continue
+                used = np.unique(edges[()])
+                if leaf["cells"] != edges.shape[0] or leaf["points"] != used.size:
+                    fail(f"{kind}.xdmf {leaf['name']}: {leaf['cells']} cells, {leaf['points']} "
+                         f"points; the boundary has {edges.shape[0]} edges on {used.size} points")
+                    continue
+                expect_array(f"{kind}.xdmf {leaf['name']}", leaf["arrays"], "node", used)
     # flow: one polyline grid per wall trace, with the trace's datasets.
     with h5py.File(f"{run}/flow.h5") as h5:
         walls = [l for l in leaves_of("flow") if set(l["cell_types"]) <= LINES]
@@ -222,9 +243,10 @@ def main():
         fail(f"{picture}: the pressure field is not drawn ({drawn.mean():.1%} of the pixels, "
              f"{colours} colours)")
 
-    # meshio reads what it read before: one-grid sidecars and the .meshio.xdmf variants.
+    # meshio reads the .meshio.xdmf variants: the mesh or beam grid alone, fields as stored.
     import meshio
-    for name in ("flowmesh.xdmf", "thermal.xdmf", "flow.meshio.xdmf", "structure.meshio.xdmf"):
+    for name in ("flowmesh.meshio.xdmf", "thermal.meshio.xdmf", "flow.meshio.xdmf",
+                 "structure.meshio.xdmf"):
         try:
             mesh = meshio.read(f"{run}/{name}")
         except Exception as error:  # noqa: BLE001 - any failure of meshio is the finding

@@ -327,6 +327,18 @@ r = tfmb_plot("report", run, "--plots-dir", os.path.join(run, "plots"), "--refer
               *mapping)
 check(r.returncode == 0 and os.path.isfile(report), f"report: exit {r.returncode}: {r.stderr}")
 
+# --- progress: in a log, the pictures drawn against their number in libcommon's line format (a
+# line at every picture at TFMB_PROGRESS_INTERVAL=0), the count reaching the total
+p = subprocess.run([plot, "report", run, "-o", os.path.join(scratch, "report-progress.html")],
+                   capture_output=True, text=True, cwd=scratch,
+                   env=dict(os.environ, TFMB_PROGRESS_INTERVAL="0"))
+lines = [l for l in p.stderr.splitlines() if l.startswith("tfmb-plot: progress: ")]
+counts = [l.split()[3].split("/") for l in lines]
+check(p.returncode == 0 and len(lines) >= 3 and counts[0][0] == "0"
+      and counts[-1][0] == counts[-1][1] and all(c[1] == counts[0][1] for c in counts)
+      and lines[0].endswith("pictures, ETA ?") and "ETA 0 s" in lines[-1],
+      f"report progress lines: {p.returncode} {lines}")
+
 
 class Page(html.parser.HTMLParser):
     """Collects the images and checks that every element opened is closed in order."""

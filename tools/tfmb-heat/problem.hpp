@@ -32,6 +32,9 @@ struct NewtonSettings {
   /// Updates larger than this [K] are scaled down (guards radiation-dominated first iterations).
   double max_update = 500.0;
   Tangent tangent = Tangent::consistent;
+  /// Called after every Newton iteration with its number (1, 2, ...), the residual [W/m] and
+  /// the largest temperature update [K] (progress lines); empty: not called.
+  std::function<void(int iteration, double residual, double largest_update)> on_iteration;
 };
 
 struct NewtonReport {

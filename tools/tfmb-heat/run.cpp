@@ -351,13 +351,21 @@ double initial_temperature(const std::vector<double>& trace_temperatures, const 
 }
 
 // The steady nonlinear conduction solve (steady_solver.hpp); logs Newton's history and the heat
-// into the solid through every wall.
+// into the solid through every wall. Newton's iterations against their limit show as a progress
+// line (Newton stops once converged, so the time left is an upper bound), as tfmb-flow's.
 SteadyResult solve_conduction(const ThermalProblem& problem, double initial,
                               const NewtonSettings& newton, const Logger& log) {
   SteadyResult result;
   std::map<std::string, double> rates;
   try {
-    result = solve_steady(problem, initial, newton);
+    Progress progress(log, "Newton", static_cast<std::size_t>(std::max(newton.max_iterations, 0)),
+                      {.unit = "iterations", .total_is_limit = true});
+    NewtonSettings settings = newton;
+    settings.on_iteration = [&progress](int iteration, double, double) {
+      progress.update(static_cast<std::size_t>(iteration));
+    };
+    result = solve_steady(problem, initial, settings);
+    progress.finish();
     const Assembler assembler(problem, false);
     rates = assembler.boundary_heat_rates(assembler.to_dofs(result.temperature), {});
   } catch (const std::invalid_argument& error) {

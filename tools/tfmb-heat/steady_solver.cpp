@@ -65,6 +65,8 @@ NewtonReport newton_solve(const Assembler& assembler, const TimeTerm& time_term,
     t += update;
     report.max_update.push_back(largest);
     report.iterations = iteration;
+    if (settings.on_iteration)
+      settings.on_iteration(iteration, report.residual_norm.back(), largest);
     if (largest <= settings.temperature_tolerance) {
       report.converged = true;
       break;

@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cstddef>
+#include <functional>
 #include <ostream>
 #include <string>
 
@@ -49,6 +50,9 @@ struct ProgressSettings {
   // Seconds between plain lines when stderr is not a terminal; negative: $TFMB_PROGRESS_INTERVAL
   // if set (0: a line at every update), else 10 s.
   double interval = -1.0;
+  // false: the time so far instead of a rate and the time left, for counts whose items differ
+  // much in cost (a mesher's phases), where a rate would promise a wrong time left.
+  bool time_left = true;
 };
 
 // Progress of a loop with a known total or budget (iterations, load steps): done/total, rate
@@ -56,8 +60,9 @@ struct ProgressSettings {
 // a second) and erased by finish(); the cursor is left at its start, so that a line another part
 // of the program prints overwrites it. Otherwise (a log, a pipe) a plain line every `interval`:
 //   <tool>: progress: <label> <done>/<total> <unit>, <rate>, ETA [<=] <time left>
-// (rate "4.2/s", or "41 s each" below one per second)
-// Nothing when the logger is quiet or the total is 0.
+// (rate "4.2/s", or "41 s each" below one per second; "<time> so far" instead of rate and time
+// left when settings.time_left is false), and ", in <activity> for <time>" while update_while()
+// runs a long call. Nothing when the logger is quiet or the total is 0.
 class Progress {
  public:
   Progress(const Logger& logger, std::string label, std::size_t total,
@@ -69,6 +74,12 @@ class Progress {
   void update(std::size_t done);
   // The same as update() at `seconds` after construction (tests; update() reads the clock).
   void update_at(std::size_t done, double seconds);
+  // Runs `work`, one long call that reports no count of its own (gmsh's meshing), in this thread
+  // while a helper thread keeps the line going: update(done) with ", in <activity> for <time
+  // spent in work>" at the usual pace (the terminal redraw or the interval). Nothing else may use
+  // this Progress meanwhile. What work throws is passed on once the helper has stopped.
+  void update_while(std::size_t done, const std::string& activity,
+                    const std::function<void()>& work);
   void finish();
 
   // The line's text after "<tool>: " (without "progress: ") for `done` after `seconds`.
@@ -85,6 +96,8 @@ class Progress {
   bool drawn_ = false;      // a terminal line is showing
   bool finished_ = false;
   std::chrono::steady_clock::time_point start_;
+  std::string activity_;         // what update_while() runs, empty outside it
+  double activity_start_ = 0.0;  // [s] after construction, when it began
 };
 
 // "42 s", "7 min 26 s", "2 h 05 min": a duration [s] for people.
