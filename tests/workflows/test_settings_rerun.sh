@@ -4,7 +4,8 @@
 # a changed variable reruns exactly the stages whose command it changes and what depends on them
 # (make -n for SET/EXTRA_SET, FLOW_OPTS, FLOW_MODEL, BEAM_OPTS, STRAIN_OPTS, FLOW); a flow setting
 # and a beam setting changed for real rerun those stages and leave the others' files untouched;
-# unchanged settings afterwards rerun nothing, and going back to the earlier settings reruns again.
+# unchanged settings afterwards rerun nothing, and going back to the earlier settings reruns again;
+# a file dropped in after `make flowmesh` is taken; a folder without records reruns every stage.
 #   test_settings_rerun.sh SOURCE_DIR RUN_DIR BIN_DIR
 set -euo pipefail
 src="$1"; run="$2"; bin="$3"
@@ -71,4 +72,17 @@ expect "the same beam setting again" "" FLOW_MAX_ITERATIONS=250 BEAM_OPTS=--dead
 
 # Back to the case's own settings: the changed stages rerun (a record follows the command).
 expect "back to the case's settings" "$after_flow"
+
+# A file dropped in: `make flowmesh` in a new folder writes every stage's record, so another
+# code's flow.h5 put there afterwards is newer than its record and taken (only what follows it
+# is planned). A folder without any record (made before they existed) reruns every stage.
+drop="$run-drop"; rm -rf "$drop"
+mk RUN="$drop" "$drop/flowmesh.h5" > "$run.log4" 2>&1 || { tail -30 "$run.log4"; fail "make flowmesh in a new folder"; }
+[ -s "$drop/.settings/flow.cmd" ] || fail "make flowmesh wrote no flow record"
+cp "$run/flow.h5" "$drop/flow.h5"
+got=$(mk -n RUN="$drop" "$drop/loads.h5" 2>&1 | { grep -o 'workflows/stage [a-z-]*' || true; } | cut -d' ' -f2 | tr '\n' ' ' | sed 's/ $//')
+[ "$got" = "loads" ] || fail "a flow.h5 dropped in: make -n plans [$got], expected [loads]"
+echo "ok: a dropped-in flow.h5 is taken"
+rm -r "$run/.settings"
+expect "a folder without records" "$all" FLOW_MAX_ITERATIONS=250 BEAM_OPTS=--dead-loads
 echo "settings rerun test passed"
