@@ -41,13 +41,14 @@ expect_missing "tfmb-loads forces" "$bin/tfmb-loads" forces "$missing" "$missing
 expect_missing "tfmb-strain" "$bin/tfmb-strain" "$missing" "$missing" -o "$out"
 expect_missing "tfmb-check" "$bin/tfmb-check" "$missing"
 # every workflow script answers --help with exit 0 and some text; those that take arguments
-# refuse none with 2 (usage). install-deps and flow-benchmarks do their work without arguments.
+# refuse none with 2 (usage). install-deps, flow-benchmarks and default-bin do their work without
+# arguments.
 for script in "$src"/workflows/* "$src"/workflows/adapters/*; do
   [ -f "$script" ] && [ -x "$script" ] || continue
   name=${script#"$src"/workflows/}
   rc=0; "$script" --help > "$scratch/help" 2>&1 || rc=$?
   [ "$rc" -eq 0 ] && [ -s "$scratch/help" ] || { echo "FAIL workflows/$name --help: exit $rc"; failed=1; }
-  case $name in install-deps | flow-benchmarks) continue ;; esac
+  case $name in install-deps | flow-benchmarks | default-bin) continue ;; esac
   rc=0; "$script" > /dev/null 2>&1 || rc=$?
   [ "$rc" -eq 2 ] || { echo "FAIL workflows/$name without arguments: exit $rc, expected 2"; failed=1; }
 done
