@@ -12,6 +12,7 @@
 #include "tfmb/common/h5.hpp"
 #include "tfmb/formats/files.hpp"
 #include "tfmb/formats/schema.hpp"
+#include "tfmb/formats/structure.hpp"
 
 namespace fs = std::filesystem;
 using namespace tfmb;
@@ -520,6 +521,42 @@ TEST(Stage, NodalMomentsAndPointLoads) {
   EXPECT_NEAR(-u(tip, 1), exact, 1e-5 * std::abs(exact));
   o.point_loads = {"sample:middle:0,1"};
   EXPECT_THROW(beam::run(o, log), UsageError);
+}
+
+// Every static run writes its load path to structure.h5 (/path, formats/structure.md 1.3): the
+// unloaded start and one row per converged step, the first point load's node as the monitor; the
+// last row is the written state.
+TEST(Stage, StaticRunsWriteTheirLoadPath) {
+  const fs::path dir = scratch("path");
+  beam::Options o;
+  o.model = write_cantilever_model(dir);
+  o.point_loads = {"sample:end:0,-2e-3"};
+  o.output = dir / "structure.h5";
+  o.load_steps = 4;
+  const Logger log("tfmb-beam", Verbosity::quiet);
+  for (const bool arc : {false, true}) {
+    o.arc_length = arc;
+    EXPECT_EQ(beam::run(o, log), 0);
+    formats::open_checked(o.output, "structure");  // validates against the schema
+    const formats::Structure s = formats::read_structure(o.output);
+    ASSERT_TRUE(s.path.has_value()) << "arc " << arc;
+    const formats::StructurePath& p = *s.path;
+    EXPECT_EQ(p.method, arc ? "arc_length" : "load_stepping");
+    EXPECT_EQ(p.monitor, "sample:end (0, -1, 0)");
+    ASSERT_GE(p.load_factor.size(), 3u);  // easy steps grow, so fewer than the 4 nominal ones
+    EXPECT_EQ(p.load_factor.front(), 0.0);
+    EXPECT_DOUBLE_EQ(p.load_factor.back(), 1.0);
+    const Eigen::Vector3d tip = s.displacement.back();
+    EXPECT_EQ(p.node_displacement.back(), tip);
+    EXPECT_DOUBLE_EQ(p.characteristic_displacement.back(), -tip.y());
+    EXPECT_GT(p.arc_length.back(), 0.0);
+    EXPECT_TRUE(p.limit_points_load.empty());
+    EXPECT_TRUE(p.limit_points_displacement.empty());
+  }
+  // Dynamic and modal runs have no load path.
+  o.analysis = "modal";
+  EXPECT_EQ(beam::run(o, log), 0);
+  EXPECT_FALSE(formats::read_structure(o.output).path.has_value());
 }
 
 // Modal analysis through the stage: first bending frequency of the clamped 1 m cantilever
