@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "tfmb-beam/errors.hpp"
 #include "tfmb-beam/linear_solver.hpp"
@@ -13,8 +14,14 @@
 
 namespace tfmb::beam {
 
-bool newton_static(const Assembly& assembly, State& state, double load_factor, const StaticOptions& options,
-                   int& iterations) {
+namespace {
+
+/// Newton at a fixed load factor with corrections scaled to turn no node by more than
+/// `max_rotation` [rad]. `determinant_signs` (if given) receives sign(det K) at the start and at
+/// the last factorisation.
+bool newton_capped(const Assembly& assembly, State& state, double load_factor,
+                   const StaticOptions& options, double max_rotation, int& iterations,
+                   std::pair<int, int>* determinant_signs) {
   NewtonLinearSolver solver([&](int i) { return assembly.dof_name(i); });
   Eigen::VectorXd r;
   Triplets k;
@@ -36,11 +43,18 @@ bool newton_static(const Assembly& assembly, State& state, double load_factor, c
       if (it == 0) throw;
       break;
     }
+    if (determinant_signs) {
+      const int sign = solver.determinant_sign();
+      if (it == 0)
+        determinant_signs->first = sign;
+      determinant_signs->second = sign;
+    }
     // Damped Newton: a correction that turns a node by more than max_rotation_increment is
     // scaled down (the first iterate of a large load step overshoots badly in rotation).
     double max_rot = 0.0;
     for (int i = 0; i < assembly.num_nodes(); ++i) max_rot = std::max(max_rot, dx.segment<3>(6 * i + 3).norm());
-    if (max_rot > options.max_rotation_increment) dx *= options.max_rotation_increment / max_rot;
+    if (max_rot > max_rotation)
+      dx *= max_rotation / max_rot;
     assembly.apply_increment(state, dx);
     accumulated += dx.head(nq);
     // Increment criterion: with quadratic convergence a correction 1e-10 times the step's total
@@ -54,6 +68,29 @@ bool newton_static(const Assembly& assembly, State& state, double load_factor, c
   }
   state = start;
   return false;
+}
+
+}  // namespace
+
+bool newton_static(const Assembly& assembly, State& state, double load_factor,
+                   const StaticOptions& options, int& iterations) {
+  if (options.full_steps_first && std::isfinite(options.max_rotation_increment)) {
+    // Full Newton first: with the exact tangent it converges the end-moment roll-up to four
+    // turns in one step, as Simo & Vu-Quoc (1986, Part II) report. A full step can also jump to
+    // another equilibrium branch past a limit point; that shows as a change of sign of det K
+    // between the start and the solution (an odd number of eigenvalues crossed zero), and such a
+    // solution is refused in favour of the capped corrections below.
+    State trial = state;
+    std::pair<int, int> signs{0, 0};
+    if (newton_capped(assembly, trial, load_factor, options,
+                      std::numeric_limits<double>::infinity(), iterations, &signs) &&
+        signs.first == signs.second) {
+      state = std::move(trial);
+      return true;
+    }
+  }
+  return newton_capped(assembly, state, load_factor, options, options.max_rotation_increment,
+                       iterations, nullptr);
 }
 
 namespace {

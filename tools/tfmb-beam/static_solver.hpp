@@ -55,6 +55,10 @@ struct StaticOptions {
   bool secant_predictor = false;
   /// Largest nodal rotation per Newton correction [rad]; larger corrections are scaled down.
   double max_rotation_increment = 0.25;
+  /// Try each solve with full (uncapped) Newton corrections first and fall back to the capped
+  /// ones only if that fails: with the exact tangent, full steps converge the end-moment roll-up
+  /// (one to four turns) in one load step, where the cap needs 41 to 240 iterations.
+  bool full_steps_first = true;
   /// Called after every converged step with (load factor, state).
   std::function<void(double, const State&)> on_step;
   PathMonitor monitor;
