@@ -412,3 +412,28 @@ TEST(StaticsPath, LoadSteppingRecordsEveryConvergedStep) {
   EXPECT_TRUE(find_limit_points(r.path).load.empty());
   EXPECT_TRUE(find_limit_points(r.path).displacement.empty());
 }
+
+// The arc grows on easy steps but never beyond max_arc_factor times the first arc: on a nearly
+// linear response (a cantilever under a small tip load, Newton in 1-2 iterations) the load-factor
+// increment stays below 4 times the first one, while without the bound it doubles every step.
+TEST(StaticsPath, ArcGrowthIsBounded) {
+  const Section sec = make_diagonal_section(1e4, 1e4, 1e4, 2.0, 2.0, 2.0);
+  Model m = cases::cantilever(1.0, 4, sec);
+  const int tip = static_cast<int>(m.nodes.size()) - 1;
+  m.nodal_loads.push_back({tip, Eigen::Vector3d(0, -1e-6, 0), Eigen::Vector3d::Zero(), false});
+  Assembly asmb(m);
+  auto largest_increment = [&](double max_arc_factor) {
+    ArcLengthOptions opt;
+    opt.initial_load_increment = 0.01;
+    opt.max_arc_factor = max_arc_factor;
+    const StaticResult r = solve_arc_length(asmb, asmb.initial_state(), opt);
+    EXPECT_TRUE(r.converged);
+    double largest = 0.0;
+    for (std::size_t i = 1; i < r.path.size(); ++i)
+      largest = std::max(largest, r.path[i].load_factor - r.path[i - 1].load_factor);
+    return largest;
+  };
+  // Linear response: the load-factor increment is proportional to the arc (1e-6 relative).
+  EXPECT_LE(largest_increment(4.0), 0.04 * (1 + 1e-6));
+  EXPECT_GT(largest_increment(1e300), 0.1);
+}
