@@ -4,9 +4,14 @@
 namespace tfmb::formats::detail {
 
 Schema structure_schema() {
-  Schema s{"structure", "tfmb/structure", 1, 2,
+  Schema s{"structure",
+           "tfmb/structure",
+           1,
+           3,
            "beam solution: displacements, rotations, sectional strains and forces, joints",
-           false, {}, {}};
+           false,
+           {},
+           {}};
   add_root(s, true);
   s.attributes.push_back(sattr("/", "analysis", "analysis kind", {"static", "dynamic", "modal"}));
   s.attributes.push_back(nattr("/", "converged", "1", "1 if the solution converged", 0.0, 1.0,
@@ -42,6 +47,39 @@ Schema structure_schema() {
   s.datasets.push_back(f64("/modes/frequency", {"M"}, "Hz", "modal analysis: natural frequencies", false));
   s.datasets.push_back(f64("/modes/displacement", {"M", "N", "3"}, "1",
                            "nodal translations of each mode, divided by its largest entry", false));
+  // Static analysis: the load path (1.3).
+  s.attributes.push_back(sattr("/path", "method", "static: how the path was followed (1.3)",
+                               {"load_stepping", "arc_length"}, false));
+  s.attributes.push_back(
+      sattr("/path", "monitor",
+            "static: the node of node_displacement and the "
+            "direction of characteristic_displacement, e.g. 'flap_a:end (0, -1, 0)' (1.3)",
+            {}, false));
+  s.datasets.push_back(f64("/path/load_factor", {"S"}, "1",
+                           "static: load factor per converged step, row 0 the unloaded start (1.3)",
+                           false));
+  s.datasets.push_back(f64("/path/arc_length", {"S"}, "m",
+                           "static: path length in the nodal translations, sum over the steps of "
+                           "the norm of the translation increments (1.3)",
+                           false));
+  s.datasets.push_back(
+      f64("/path/max_displacement", {"S"}, "m", "static: largest nodal displacement (1.3)", false));
+  s.datasets.push_back(
+      f64("/path/characteristic_displacement", {"S"}, "m",
+          "static: node_displacement along the monitor's direction, else max_displacement; its "
+          "turns are the limit points in displacement (1.3)",
+          false));
+  s.datasets.push_back(f64("/path/node_displacement", {"S", "3"}, "m",
+                           "static: displacement of the monitored node (1.3)", false));
+  s.datasets.push_back(
+      i64("/path/iterations", {"S"}, "",
+          "static: Newton iterations of the step, cut-back attempts included (1.3)", false));
+  s.datasets.push_back(i64("/path/limit_points_load", {"Pl"}, "S",
+                           "static: rows where the load-factor increment changes sign (1.3)",
+                           false));
+  s.datasets.push_back(i64(
+      "/path/limit_points_displacement", {"Pd"}, "S",
+      "static: rows where the characteristic displacement's increment changes sign (1.3)", false));
   add_provenance(s);
   return s;
 }

@@ -2,6 +2,8 @@
 // schema_structure.cpp).
 #include "tfmb/formats/structure.hpp"
 
+#include <limits>
+
 #include "rows.hpp"
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
@@ -106,6 +108,42 @@ void read_restart(const h5::Reader& r, Structure& s) {
   s.restart = std::move(restart);
 }
 
+// /path (1.3): optional as a whole; once load_factor is there the rest must be whole too.
+void read_path(const h5::Reader& r, Structure& s) {
+  if (!r.exists("/path/load_factor")) {
+    if (r.exists("/path"))
+      r.fail("/path", "load_factor missing");
+    return;
+  }
+  StructurePath p;
+  p.load_factor = r.read_vector("/path/load_factor");
+  const std::size_t rows = p.load_factor.size();
+  if (rows == 0)
+    r.fail("/path/load_factor", "empty (row 0 is the unloaded start)");
+  p.arc_length = r.read_vector("/path/arc_length", rows);
+  for (std::size_t i = 0; i < rows; ++i)
+    if (p.arc_length[i] < (i == 0 ? 0.0 : p.arc_length[i - 1]))
+      r.fail("/path/arc_length", "row " + std::to_string(i) + " decreases or is negative (" +
+                                     std::to_string(p.arc_length[i]) + "); expected a path length");
+  p.max_displacement = r.read_vector("/path/max_displacement", rows);
+  p.characteristic_displacement = r.read_vector("/path/characteristic_displacement", rows);
+  p.iterations =
+      r.read_index_vector("/path/iterations", rows, 0, std::numeric_limits<std::int64_t>::max());
+  const auto limit = static_cast<std::int64_t>(rows);
+  p.limit_points_load = r.read_index_vector("/path/limit_points_load", std::nullopt, 0, limit);
+  p.limit_points_displacement =
+      r.read_index_vector("/path/limit_points_displacement", std::nullopt, 0, limit);
+  if (r.exists("/path/node_displacement"))
+    p.node_displacement = detail::read_rows<3>(r, "/path/node_displacement", rows);
+  if (r.has_attr("/path", "method"))
+    p.method = r.attr_string("/path", "method");
+  if (p.method != "load_stepping" && p.method != "arc_length")
+    r.fail("/path", "attribute method '" + p.method + "' is neither load_stepping nor arc_length");
+  if (r.has_attr("/path", "monitor"))
+    p.monitor = r.attr_string("/path", "monitor");
+  s.path = std::move(p);
+}
+
 }  // namespace
 
 void write_structure(const std::filesystem::path& file, const Structure& s,
@@ -171,6 +209,31 @@ void write_structure(const std::filesystem::path& file, const Structure& s,
     }
     w.set_attr("/restart", "time", s.restart->time);
   }
+  if (s.path) {
+    const StructurePath& p = *s.path;
+    const std::size_t rows = p.load_factor.size();
+    if (rows == 0 || p.arc_length.size() != rows || p.max_displacement.size() != rows ||
+        p.characteristic_displacement.size() != rows || p.iterations.size() != rows ||
+        (!p.node_displacement.empty() && p.node_displacement.size() != rows))
+      throw InternalError("structure: /path columns of unequal length");
+    w.write("/path/load_factor", p.load_factor, "1", "load factor; row 0 the unloaded start");
+    w.write("/path/arc_length", p.arc_length, "m", "path length in the nodal translations");
+    w.write("/path/max_displacement", p.max_displacement, "m", "largest nodal displacement");
+    w.write(
+        "/path/characteristic_displacement", p.characteristic_displacement, "m",
+        "the monitored node's displacement along the monitor's direction, else max_displacement");
+    if (!p.node_displacement.empty())
+      w.write("/path/node_displacement", detail::rows(p.node_displacement), "m",
+              "displacement of the monitored node");
+    w.write("/path/iterations", p.iterations, "1", "Newton iterations of the step");
+    w.write("/path/limit_points_load", p.limit_points_load, "1",
+            "rows where the load-factor increment changes sign");
+    w.write("/path/limit_points_displacement", p.limit_points_displacement, "1",
+            "rows where the characteristic displacement's increment changes sign");
+    w.set_attr("/path", "method", p.method);
+    if (!p.monitor.empty())
+      w.set_attr("/path", "monitor", p.monitor);
+  }
   write_provenance(w, provenance);
   w.commit();
   write_xdmf_sidecar(file);
@@ -204,6 +267,7 @@ Structure read_structure(const std::filesystem::path& file) {
     s.mode_displacement = read_snapshots(r, "/modes/displacement", s.mode_frequency.size(), n);
   }
   read_restart(r, s);
+  read_path(r, s);
   return s;
 }
 

@@ -13,6 +13,7 @@
 #include "tfmb/formats/materials.hpp"
 #include "tfmb/formats/solidmesh.hpp"
 #include "tfmb/formats/strain.hpp"
+#include "tfmb/formats/structure.hpp"
 
 namespace fs = std::filesystem;
 using namespace tfmb;
@@ -270,4 +271,65 @@ TEST(TypedIo, StrainRoundTripAndAWorstFlapThatIsNoFlapIsRefused) {
   strain.worst_flap = "lower";
   formats::write_strain(file, strain, {});
   EXPECT_THROW(formats::read_strain(file), BadInput);
+}
+
+// The static load path of structure.h5 (1.3): written and read back whole; a file without it
+// (before 1.3, or a dynamic run) reads with no path; a path length that decreases and a limit
+// point outside the path are refused with the dataset named.
+TEST(TypedIo, StructurePathRoundTripAndABrokenPathIsRefused) {
+  formats::Structure s;
+  s.header.creator = "test";
+  s.analysis = "static";
+  s.converged = true;
+  s.points = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.5, 0, 0), Eigen::Vector3d(1, 0, 0)};
+  s.segments = {{0, 1}, {1, 2}};
+  s.displacement = s.rotation = std::vector<Eigen::Vector3d>(3, Eigen::Vector3d::Zero());
+  s.sectional_strain = s.sectional_force =
+      std::vector<formats::Vector6>(2, formats::Vector6::Zero());
+  s.flaps = {{"beam", {0, 1, 2}, {0, 1}}};
+  const fs::path file = scratch("structure.h5");
+  formats::write_structure(file, s, {});
+  EXPECT_FALSE(formats::read_structure(file).path.has_value());
+
+  formats::StructurePath p;
+  p.method = "arc_length";
+  p.monitor = "beam:end (0, -1, 0)";
+  p.load_factor = {0.0, 0.6, 0.9, 0.7, 1.0};
+  p.arc_length = {0.0, 0.1, 0.2, 0.3, 0.4};
+  p.max_displacement = {0.0, 0.1, 0.2, 0.3, 0.4};
+  p.characteristic_displacement = {0.0, 0.1, 0.2, 0.25, 0.4};
+  p.node_displacement = {Eigen::Vector3d::Zero(), Eigen::Vector3d(0, -0.1, 0),
+                         Eigen::Vector3d(0, -0.2, 0), Eigen::Vector3d(0, -0.25, 0),
+                         Eigen::Vector3d(0, -0.4, 0)};
+  p.iterations = {0, 4, 5, 6, 4};
+  p.limit_points_load = {2, 3};
+  p.limit_points_displacement = {};
+  s.path = p;
+  formats::write_structure(file, s, {});
+  const formats::Structure back = formats::read_structure(file);
+  ASSERT_TRUE(back.path.has_value());
+  EXPECT_EQ(back.path->method, "arc_length");
+  EXPECT_EQ(back.path->monitor, p.monitor);
+  EXPECT_EQ(back.path->load_factor, p.load_factor);
+  EXPECT_EQ(back.path->arc_length, p.arc_length);
+  EXPECT_EQ(back.path->characteristic_displacement, p.characteristic_displacement);
+  EXPECT_EQ(back.path->node_displacement, p.node_displacement);
+  EXPECT_EQ(back.path->iterations, p.iterations);
+  EXPECT_EQ(back.path->limit_points_load, p.limit_points_load);
+  EXPECT_TRUE(back.path->limit_points_displacement.empty());
+
+  auto refused = [&](const std::string& expected) {
+    formats::write_structure(file, s, {});
+    try {
+      formats::read_structure(file);
+      ADD_FAILURE() << "accepted; expected: " << expected;
+    } catch (const BadInput& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+  };
+  s.path->arc_length = {0.0, 0.2, 0.1, 0.3, 0.4};
+  refused("/path/arc_length");
+  s.path = p;
+  s.path->limit_points_load = {2, 5};
+  refused("/path/limit_points_load");
 }

@@ -1,6 +1,7 @@
 #include "tfmb-beam/cases.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 namespace tfmb::beam::cases {
 
@@ -120,6 +121,45 @@ Model seed_flexible_joint_example2(const std::string& functions, const Eigen::Ve
   m.joints = {bushing};
   m.nodal_loads.push_back({0, Eigen::Vector3d(125.0, 250.0, 375.0), Eigen::Vector3d(125.0, 250.0, 375.0), false});
   return m;
+}
+
+LeeFrame lee_frame(int elements_per_member, double load) {
+  if (elements_per_member <= 0 || elements_per_member % 5 != 0)
+    throw std::invalid_argument("lee_frame: elements_per_member must be a positive multiple of 5");
+  LeeFrame f;
+  Model& m = f.model;
+  const double length = 120.0, e = 7.2e6, nu = 0.3, area = 6.0, inertia = 2.0;
+  const double g = e / (2.0 * (1.0 + nu)), shear = 5.0 / 6.0 * g * area;
+  // Torsion and out-of-plane bending do not enter the planar model; given finite values.
+  m.sections.push_back(
+      make_diagonal_section(e * area, shear, shear, g * 2.0 * inertia, e * inertia, e * inertia));
+  const auto column = add_beam(
+      m, elements_per_member, 0, [&](double s) { return Eigen::Vector3d(0.0, length * s, 0.0); },
+      [](double) { return Eigen::Vector3d::UnitY(); });
+  const auto beam = add_beam(
+      m, elements_per_member, 0, [&](double s) { return Eigen::Vector3d(length * s, length, 0.0); },
+      [](double) { return Eigen::Vector3d::UnitX(); });
+  JointSpec foot;
+  foot.kind = JointKind::revolute;
+  foot.name = "foot";
+  foot.node_a = -1;
+  foot.node_b = column.front();
+  JointSpec end = foot;
+  end.name = "end";
+  end.node_b = beam.back();
+  JointSpec corner;
+  corner.kind = JointKind::rigid;
+  corner.name = "corner";
+  corner.node_a = column.back();
+  corner.node_b = beam.front();
+  m.joints = {foot, end, corner};
+  m.planar = true;
+  add_planar_constraints(m);
+  // 24 = 120 / 5 from the corner: node 2 n / 5 of the beam (2 n + 1 nodes over 120).
+  f.load_node = beam[static_cast<std::size_t>(2 * elements_per_member / 5)];
+  m.nodal_loads.push_back(
+      {f.load_node, Eigen::Vector3d(0.0, -load, 0.0), Eigen::Vector3d::Zero(), false});
+  return f;
 }
 
 }  // namespace tfmb::beam::cases

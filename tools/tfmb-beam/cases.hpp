@@ -42,4 +42,18 @@ Model seed_flexible_joint_example1(FlexibleMeasure measure, bool swap_handles, i
 Model seed_flexible_joint_example2(const std::string& functions,
                                   const Eigen::Vector3d& rotational_stiffness = Eigen::Vector3d(1000, 1000, 100));
 
+/// Lee's frame (Lee, Manuel & Rossow 1968; Simo & Vu-Quoc 1986, Part II, sec. 10): a right-angle
+/// frame of two members of length 120, a column from (0, 0) to (0, 120) and a beam from (0, 120)
+/// to (120, 120), rigidly joined at the corner ("corner"), hinged to the ground at the column's
+/// foot ("foot") and at the beam's far end ("end"); E = 7.2e6, nu = 0.3, A = 6, I = 2 (a 3 x 2
+/// rectangle, shear factor 5/6); a dead load `load` (-y) on the beam at 24 from the corner (node
+/// `LeeFrame::load_node`). Consistent units (the published ones are in and lbf, the limit load of
+/// the dead-load path is 18532 in Simo & Vu-Quoc's units); planar. `elements_per_member` must be
+/// a multiple of 5 so that the load point is a node.
+struct LeeFrame {
+  Model model;
+  int load_node = 0;
+};
+LeeFrame lee_frame(int elements_per_member, double load);
+
 }  // namespace tfmb::beam::cases

@@ -22,6 +22,9 @@ class NewtonLinearSolver {
   Eigen::VectorXd solve(int n, const Triplets& k, const Eigen::VectorXd& r, double step_limit = 1e300);
   /// Solves with the matrix factorised by the last solve() (another right-hand side).
   Eigen::VectorXd solve_again(const Eigen::VectorXd& rhs) const { return lu_.solve(rhs); }
+  /// Sign of det K of the matrix factorised by the last solve() (row and column permutations
+  /// included): a change along a path means an odd number of eigenvalues crossed zero.
+  int determinant_sign() const { return lu_.signDeterminant() < 0.0 ? -1 : 1; }
   /// Message describing the null space of a singular matrix (dense analysis; small systems only).
   std::string describe_singularity(const Eigen::SparseMatrix<double>& k) const;
 

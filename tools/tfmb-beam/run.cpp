@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
-#include <fstream>
 #include <cmath>
+#include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "tfmb-beam/assembly.hpp"
@@ -226,6 +227,14 @@ FileModel read_model(const Options& options) {
     l.force = Eigen::Vector3d(v[0], v[1], 0.0);
     if (v.size() == 3) l.moment = Eigen::Vector3d(0.0, 0.0, v[2]);
     m.nodal_loads.push_back(l);
+    // The first point load's node and direction are the load path's monitor (structure.h5 /path).
+    if (fm.monitor.node < 0 && l.force.norm() > 0.0) {
+      fm.monitor = {l.node, l.force.normalized()};
+      std::ostringstream name;
+      name << flap << ":" << end << " (" << fm.monitor.direction.x() << ", "
+           << fm.monitor.direction.y() << ", " << fm.monitor.direction.z() << ")";
+      fm.monitor_name = name.str();
+    }
   }
 
   // Loads: the file's consistent nodal forces and moments at the flap nodes (the end nodes of
@@ -295,10 +304,34 @@ FileModel read_model(const Options& options) {
 
 namespace {
 
-void write_structure(const Options& options, const FileModel& fm, const Assembly& asmb, const State& state,
-                     const std::string& analysis, bool converged, const std::vector<double>& times,
-                     const std::vector<std::vector<Eigen::Vector3d>>& history, const ModalResult* modes,
-                     const Motion* motion = nullptr, double end_time = 0.0) {
+/// The static solve's path as structure.h5 /path (formats/structure.md 1.3).
+formats::StructurePath structure_path(const StaticResult& r, const std::string& method,
+                                      const FileModel& fm) {
+  formats::StructurePath p;
+  p.method = method;
+  p.monitor = fm.monitor_name;
+  for (const PathPoint& row : r.path) {
+    p.load_factor.push_back(row.load_factor);
+    p.arc_length.push_back(row.arc_length);
+    p.max_displacement.push_back(row.max_displacement);
+    p.characteristic_displacement.push_back(row.characteristic_displacement);
+    if (fm.monitor.node >= 0)
+      p.node_displacement.push_back(row.node_displacement);
+    p.iterations.push_back(row.iterations);
+  }
+  const LimitPoints limits = find_limit_points(r.path);
+  p.limit_points_load.assign(limits.load.begin(), limits.load.end());
+  p.limit_points_displacement.assign(limits.displacement.begin(), limits.displacement.end());
+  return p;
+}
+
+void write_structure(const Options& options, const FileModel& fm, const Assembly& asmb,
+                     const State& state, const std::string& analysis, bool converged,
+                     const std::vector<double>& times,
+                     const std::vector<std::vector<Eigen::Vector3d>>& history,
+                     const ModalResult* modes, const Motion* motion = nullptr,
+                     double end_time = 0.0,
+                     std::optional<formats::StructurePath> path = std::nullopt) {
   const Model& m = fm.model;
   formats::Structure out;
   out.header.creator = "tfmb-beam " TFMB_BEAM_VERSION;
@@ -388,6 +421,7 @@ void write_structure(const Options& options, const FileModel& fm, const Assembly
     restart.time = end_time;
     out.restart = std::move(restart);
   }
+  out.path = std::move(path);
   formats::Provenance prov;
   prov.command_line = options.command_line;
   // Every option as given (declared once in main.cpp), then the analysis the model resolved.
@@ -465,17 +499,26 @@ int run(const Options& options, const Logger& log) {
       so.on_step = [&](double load_factor, const State&) {
         progress.update(static_cast<std::size_t>(std::lround(load_factor * so.initial_steps)));
       };
+      so.monitor = fm.monitor;
       StaticResult r;
       if (options.arc_length) {
         ArcLengthOptions ao;
         ao.initial_load_increment = 1.0 / std::max(so.initial_steps, 1);
         ao.final_load_factor = 1.0;
+        ao.monitor = fm.monitor;
         r = solve_arc_length(*asmb, asmb->initial_state(), ao);
       } else {
         r = solve_static(*asmb, asmb->initial_state(), so);
       }
       progress.finish();
-      write_structure(options, fm, *asmb, r.state, analysis, r.converged, times, history, nullptr);
+      write_structure(options, fm, *asmb, r.state, analysis, r.converged, times, history, nullptr,
+                      nullptr, 0.0,
+                      structure_path(r, options.arc_length ? "arc_length" : "load_stepping", fm));
+      const LimitPoints limits = find_limit_points(r.path);
+      if (!limits.load.empty() || !limits.displacement.empty())
+        log.info("load path: " + std::to_string(limits.load.size()) + " limit point(s) in load, " +
+                 std::to_string(limits.displacement.size()) +
+                 " in displacement (structure.h5 /path)");
       log.summary("static: " + std::string(r.converged ? "converged" : "NOT converged") + " at load factor " +
                   std::to_string(r.load_factor) + ", " + std::to_string(r.steps) + " steps, " +
                   std::to_string(r.iterations) + " Newton iterations");

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "tfmb-beam/model.hpp"
+#include "tfmb-beam/static_solver.hpp"
 #include "tfmb/common/log.hpp"
 #include "tfmb/formats/model.hpp"
 
@@ -45,6 +46,9 @@ struct FileModel {
   std::map<std::string, std::vector<int>> flap_elements;  // quadratic elements of each flap
   std::vector<std::string> joint_names;  // per model.joints entry ("" for planar guides)
   formats::AnalysisSettings analysis;    // the model's /analysis (defaults of --analysis etc.)
+  /// The load path's monitored node: the first --point-load's node along its force (none without).
+  PathMonitor monitor;
+  std::string monitor_name;  // e.g. "beam_a:end (0, -1, 0)"
 };
 
 /// Reads and checks the inputs (throws tfmb::BadInput naming the file and object on errors).

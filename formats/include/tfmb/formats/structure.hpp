@@ -43,6 +43,22 @@ struct StructureRestart {
   double time = 0.0;                              // [s]
 };
 
+// The load path of a static analysis (1.3): row 0 the unloaded start, then one row per converged
+// load step (tfmb-beam writes it for load stepping and arc length alike).
+struct StructurePath {
+  std::string method;  // load_stepping | arc_length
+  std::string
+      monitor;  // the monitored node and direction, e.g. "flap_a:end (0, -1, 0)"; "" if none
+  std::vector<double> load_factor;                      // [1]
+  std::vector<double> arc_length;                       // [m] nondecreasing
+  std::vector<double> max_displacement;                 // [m] largest nodal displacement
+  std::vector<double> characteristic_displacement;      // [m] monitored node along its direction
+  std::vector<Eigen::Vector3d> node_displacement;       // [m] monitored node; empty without one
+  std::vector<std::int64_t> iterations;                 // Newton iterations per step
+  std::vector<std::int64_t> limit_points_load;          // rows where the load factor turns
+  std::vector<std::int64_t> limit_points_displacement;  // rows where the displacement turns
+};
+
 struct Structure : ReadFrom {
   Header header;
   std::string analysis;  // static | dynamic | modal
@@ -60,6 +76,7 @@ struct Structure : ReadFrom {
   std::vector<double> mode_frequency;                              // [Hz] modal
   std::vector<std::vector<Eigen::Vector3d>> mode_displacement;     // [mode][node], normalised
   std::optional<StructureRestart> restart;
+  std::optional<StructurePath> path;  // static analyses (1.3); absent in older files
 
   const StructureFlap* find_flap(const std::string& name) const { return find_named(flaps, name); }
 };
