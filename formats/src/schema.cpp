@@ -174,8 +174,8 @@ void check_attribute(const h5::Reader& file, const AttributeRule& rule, const st
     if (rule.required) {
       add("missing attribute '" + rule.name + "'");
     } else if (!rule.required_with.empty() && file.has_attr(object, rule.required_with)) {
-      add("missing attribute '" + rule.name + "', required with attribute '" +
-          rule.required_with + "'");
+      add("missing attribute '" + rule.name + "', required with attribute '" + rule.required_with +
+          "'");
     }
     return;
   }
@@ -374,7 +374,9 @@ std::string markdown_table(const Schema& schema) {
     }
     out << "| `" << a.object_path << "` | @" << a.name << " | " << attr_type_text(a.type)
         << " | scalar | " << (a.units.empty() ? "" : a.units) << " | "
-        << (a.required ? "yes" : a.required_with.empty() ? "no" : "with @" + a.required_with)
+        << (a.required                ? "yes"
+            : a.required_with.empty() ? "no"
+                                      : "with @" + a.required_with)
         << " | " << meaning << " |\n";
   }
   for (const DatasetRule& d : schema.datasets) {

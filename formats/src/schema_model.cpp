@@ -137,7 +137,8 @@ Schema model_schema() {
   AttributeRule flap = sattr("/domain/boundaries/*", "flap", "flap whose wall this is", {}, false);
   flap.required_with = "side";
   s.attributes.push_back(flap);
-  AttributeRule side = sattr("/domain/boundaries/*", "side", "side of the flap", {"inner", "outer", "end"}, false);
+  AttributeRule side =
+      sattr("/domain/boundaries/*", "side", "side of the flap", {"inner", "outer", "end"}, false);
   side.required_with = "flap";
   s.attributes.push_back(side);
   s.datasets.push_back(f64("/domain/boundaries/*/points", {"nb", "2"}, "m",

@@ -202,7 +202,8 @@ TEST(FlapAndSide, AreRequiredTogether) {
   for (const std::string kind : {"flowmesh", "solidmesh", "flow", "thermal", "model"}) {
     const Schema* schema = find_schema(kind);
     ASSERT_NE(schema, nullptr);
-    const std::string object = kind == "model" ? "/domain/boundaries/sample" : "/mesh/boundaries/sample";
+    const std::string object =
+        kind == "model" ? "/domain/boundaries/sample" : "/mesh/boundaries/sample";
     for (const std::string dropped : {"side", "flap"}) {
       Document document = example_document(*schema);
       ASSERT_TRUE(document.attributes[object].count(dropped)) << kind << " " << dropped;

@@ -299,7 +299,8 @@ TEST(LoadsFiles, TheWallNormalsSayWhereTheFluidIs) {
     const hid_t file = H5Fopen(flow.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
     ASSERT_GE(file, 0);
     for (const char* wall : {"in", "out", "lower_in", "lower_out"}) {
-      EXPECT_GE(H5Ldelete(file, (std::string("/walls/") + wall + "/normal").c_str(), H5P_DEFAULT), 0);
+      EXPECT_GE(H5Ldelete(file, (std::string("/walls/") + wall + "/normal").c_str(), H5P_DEFAULT),
+                0);
     }
     H5Fclose(file);
   };
@@ -309,15 +310,18 @@ TEST(LoadsFiles, TheWallNormalsSayWhereTheFluidIs) {
     auto p = [](const Vec2&) { return 2e5; };
     auto ambient = [](const Vec2&) { return 1e5; };
     auto zero = [](const Vec2&) { return 0.0; };
-    tf::write_flow(
-        files.flow,
-        {tf::make_trace("in", flap.name, "inner", flap.inner_wall, p, zero, -1.0),
-         tf::make_trace("out", flap.name, "outer", flap.outer_wall, ambient, zero, 1.0),
-         tf::make_trace("lower_in", "lower", "inner", files.flaps[1].inner_wall, ambient, zero, 1.0),
-         tf::make_trace("lower_out", "lower", "outer", files.flaps[1].outer_wall, ambient, zero, -1.0)});
+    tf::write_flow(files.flow,
+                   {tf::make_trace("in", flap.name, "inner", flap.inner_wall, p, zero, -1.0),
+                    tf::make_trace("out", flap.name, "outer", flap.outer_wall, ambient, zero, 1.0),
+                    tf::make_trace("lower_in", "lower", "inner", files.flaps[1].inner_wall, ambient,
+                                   zero, 1.0),
+                    tf::make_trace("lower_out", "lower", "outer", files.flaps[1].outer_wall,
+                                   ambient, zero, -1.0)});
     drop_normals(files.flow);
     const auto out = files.dir / "loads.h5";
-    ASSERT_EQ(run_cli("forces " + files.flow.string() + " " + files.model.string() + " -o " + out.string()), 0);
+    ASSERT_EQ(run_cli("forces " + files.flow.string() + " " + files.model.string() + " -o " +
+                      out.string()),
+              0);
     const h5::Reader r(out);
     const h5::MatrixXdR f = r.read_matrix("/flaps/" + flap.name + "/nodal_force", std::nullopt, 3);
     EXPECT_NEAR(f.col(1).sum(), as_given, 1e-9 * std::abs(as_given));

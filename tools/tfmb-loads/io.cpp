@@ -43,15 +43,18 @@ double fluid_side_from_mesh(const formats::Flow& flow, const formats::FlowWall& 
   auto visit = [&](const h5::MatrixXiR& cells) {
     for (Eigen::Index c = 0; c < cells.rows(); ++c) {
       Vec2 centre = Vec2::Zero();
-      for (Eigen::Index i = 0; i < cells.cols(); ++i) centre += point(cells(c, i));
+      for (Eigen::Index i = 0; i < cells.cols(); ++i)
+        centre += point(cells(c, i));
       centre /= static_cast<double>(cells.cols());
       for (Eigen::Index i = 0; i < cells.cols(); ++i) {
         const auto it = trace_edge.find(edge(cells(c, i), cells(c, (i + 1) % cells.cols())));
-        if (it == trace_edge.end()) continue;
+        if (it == trace_edge.end())
+          continue;
         const Vec2 a = point(wall.node[it->second]), b = point(wall.node[it->second + 1]);
         const Vec2 e = b - a, r = centre - a;
         const double cross = e.x() * r.y() - e.y() * r.x();
-        if (cross != 0.0) vote += (cross > 0.0 ? 1.0 : -1.0) * e.norm();
+        if (cross != 0.0)
+          vote += (cross > 0.0 ? 1.0 : -1.0) * e.norm();
       }
     }
   };
@@ -71,7 +74,8 @@ double fluid_side_from_mesh(const formats::Flow& flow, const formats::FlowWall& 
 double fluid_side(const formats::Flow& flow, const formats::FlowWall& wall,
                   const WallTrace& trace) {
   const std::string group = "/walls/" + wall.name;
-  if (wall.normal.empty()) return fluid_side_from_mesh(flow, wall);
+  if (wall.normal.empty())
+    return fluid_side_from_mesh(flow, wall);
   double vote = 0.0;
   for (std::size_t k = 0; k < trace.segment_count(); ++k) {
     const Vec2 into_wall = wall.normal[k] + wall.normal[k + 1];
