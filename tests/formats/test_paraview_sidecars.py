@@ -21,6 +21,7 @@ import os
 import shutil
 import subprocess
 import sys
+import time
 
 import h5py
 import numpy as np
@@ -89,6 +90,22 @@ def check_mesh_fields(where, leaf, h5):
             expect_array(where, leaf["arrays"], name, h5[f"{group}/{name}"][()])
 
 
+
+def run_under_xvfb(xvfb, command, timeout):
+    """Runs command under xvfb-run on a free display. A connection refused by the new X server
+    (ParaView: "bad X server connection", seen once in CI with the machine loaded, display :100
+    beside a stale :99 lock) is the server not yet serving, not ParaView failing: tried up to
+    three times, a few seconds apart."""
+    for attempt in range(3):
+        result = subprocess.run([xvfb, "-a", "-s", "-screen 0 1024x768x24"] + command,
+                                capture_output=True, text=True, timeout=timeout)
+        x_failure = "bad X server connection" in result.stderr or "cannot open display" in result.stderr
+        if result.returncode == 0 or not x_failure:
+            return result
+        print(f"note: the X server refused pvpython (attempt {attempt + 1} of 3); again", file=sys.stderr)
+        time.sleep(3)
+    return result
+
 def main():
     source, bin_dir, scratch = (os.path.abspath(a) for a in sys.argv[1:4])
     run = os.path.abspath(sys.argv[5]) if len(sys.argv) > 5 and sys.argv[4] == "--run" else None
@@ -127,19 +144,18 @@ def main():
         if not os.path.exists(sidecar):
             fail(f"no sidecar {sidecar}")
     report_file, picture = f"{scratch}/paraview.json", f"{scratch}/flow-pressure.png"
-    probe = subprocess.run(
-        [xvfb, "-a", "-s", "-screen 0 1024x768x24", pvpython,
-         os.path.join(source, "tests/formats/paraview_probe.py"), report_file, picture,
-         f"{run}/flow.xdmf", "pressure"] + [s for s in sidecars if os.path.exists(s)],
-        capture_output=True, text=True, timeout=120)
+    probe = run_under_xvfb(
+        xvfb, [pvpython, os.path.join(source, "tests/formats/paraview_probe.py"), report_file,
+               picture, f"{run}/flow.xdmf", "pressure"] + [s for s in sidecars if os.path.exists(s)],
+        timeout=120)
     if probe.returncode != 0 or not os.path.exists(report_file):
         # Tell "ParaView cannot start here" (no display, no OpenGL) from a sidecar it cannot
         # read: the same command on a built-in source, rendered.
-        trial = subprocess.run(
-            [xvfb, "-a", "-s", "-screen 0 1024x768x24", pvpython, "-c",
-             "from paraview.simple import *; Show(Sphere()); "
-             f"SaveScreenshot('{scratch}/trial.png', GetActiveViewOrCreate('RenderView'))"],
-            capture_output=True, text=True, timeout=60)
+        trial = run_under_xvfb(
+            xvfb, [pvpython, "-c",
+                   "from paraview.simple import *; Show(Sphere()); "
+                   f"SaveScreenshot('{scratch}/trial.png', GetActiveViewOrCreate('RenderView'))"],
+            timeout=60)
         if trial.returncode != 0:
             print("SKIP: ParaView cannot start here (xvfb-run -a pvpython, rendering a sphere):",
                   (trial.stderr.strip().splitlines() or ["no message"])[0])
