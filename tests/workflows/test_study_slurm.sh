@@ -25,19 +25,47 @@ command -v snakemake > /dev/null || fail "snakemake is not installed (workflows/
 
 mkdir -p "$scratch"
 d=$(mktemp -d "$scratch/slurm.XXXXXX")
-pids=()
-cleanup() {
-  local rc=$?
-  if [ -f "$d/slurm.conf" ] && [ ${#pids[@]} -gt 0 ]; then
-    # Our own controller only (SLURM_CONF): cancel what is left, then stop the daemons.
-    SLURM_CONF=$d/slurm.conf timeout 20 squeue --noheader --format=%i 2>/dev/null \
-      | xargs -r env SLURM_CONF="$d/slurm.conf" timeout 20 scancel 2>/dev/null || true
+pids=()      # the daemons started here, in order
+study_pid=  # a study run under way
+watcher=    # the watcher that stops the daemons should this script be killed outright
+# Cancel the jobs left on our own controller (SLURM_CONF: nobody else's) and give the node 30 s
+# to end them, then stop the daemons started here, the last started first, and any job step
+# daemon of this cluster still there (a slurmstepd whose environment names our slurm.conf).
+stop_cluster() {
+  if [ -f "$d/slurm.conf" ] && [ $# -gt 0 ]; then
+    local jobs
+    jobs=$(SLURM_CONF=$d/slurm.conf timeout 20 squeue --noheader --format=%i 2>/dev/null || true)
+    if [ -n "$jobs" ]; then
+      SLURM_CONF=$d/slurm.conf timeout 20 scancel $jobs 2>/dev/null || true
+      for _ in $(seq 30); do
+        [ -z "$(SLURM_CONF=$d/slurm.conf timeout 10 squeue --noheader --states=PENDING,RUNNING,COMPLETING --format=%i 2>/dev/null)" ] && break
+        sleep 1
+      done
+    fi
   fi
-  for ((i = ${#pids[@]} - 1; i >= 0; i--)); do kill "${pids[i]}" 2>/dev/null || true; done
-  for pid in "${pids[@]}"; do
+  local all=("$@") i pid
+  for ((i = ${#all[@]} - 1; i >= 0; i--)); do kill "${all[i]}" 2>/dev/null || true; done
+  for pid in "$@"; do
     for _ in $(seq 50); do kill -0 "$pid" 2>/dev/null || break; sleep 0.2; done
     kill -9 "$pid" 2>/dev/null || true
   done
+  for pid in $(pgrep -x slurmstepd || true); do
+    if tr '\0' '\n' < "/proc/$pid/environ" 2>/dev/null | grep -qx "SLURM_CONF=$d/slurm.conf"; then
+      kill -9 "$pid" 2>/dev/null || true
+    fi
+  done
+}
+stop_study() {  # stop_study PID: TERM (the study stops snakemake, which cancels its jobs), then KILL
+  kill "$1" 2>/dev/null || true
+  for _ in $(seq 60); do kill -0 "$1" 2>/dev/null || break; sleep 0.5; done
+  kill -9 "$1" 2>/dev/null || true
+}
+cleanup() {
+  local rc=$?
+  [ -z "$watcher" ] || kill "$watcher" 2>/dev/null || true
+  # A study under way first, while the controller still runs to cancel its jobs.
+  [ -z "$study_pid" ] || stop_study "$study_pid"
+  stop_cluster "${pids[@]}"
   if [ $rc -ne 0 ] && [ $rc -ne 77 ]; then
     for log in slurmctld slurmd munged; do
       [ -f "$d/$log.log" ] && { echo "--- $d/$log.log (end)"; tail -15 "$d/$log.log"; }
@@ -119,6 +147,12 @@ case $state in
   idle*) ;;
   *) skip "the single-node Slurm did not come up in 60 s (node state '${state:-none}'; logs in $d)" ;;
 esac
+# Should this script be killed outright (a ctest timeout may send SIGKILL), a watcher stops a
+# study under way (its pid in $d/study.pid) and the daemons once it is gone.
+( while kill -0 $$ 2>/dev/null; do sleep 2; done
+  [ ! -s "$d/study.pid" ] || stop_study "$(cat "$d/study.pid")"
+  stop_cluster "${pids[@]}" ) > /dev/null 2>&1 &
+watcher=$!
 echo "ok: Slurm up (controller port $ctl_port, node port $node_port, $cpus CPUs, folder $d)"
 
 # The study: two points, one CPU each (both run at once on the node).
@@ -136,8 +170,16 @@ set = "flow.nozzle_pressure_ratio"
 values = [4.0, 6.0]
 EOF
 start=$(date +%s)
+# In the background with wait, so that a signal to this script stops it at once (cleanup).
+rc=0
 timeout 900 "$src/workflows/study" run "$d/study.toml" --dir "$d/study" --bin "$bin" \
-  --profile "$src/workflows/slurm" > "$d/study.log" 2>&1 || { tail -40 "$d/study.log"; fail "study run --profile workflows/slurm"; }
+  --profile "$src/workflows/slurm" > "$d/study.log" 2>&1 &
+study_pid=$!
+echo $study_pid > "$d/study.pid"
+wait $study_pid || rc=$?
+study_pid=
+rm -f "$d/study.pid"
+[ $rc -eq 0 ] || { tail -40 "$d/study.log"; fail "study run --profile workflows/slurm: exit $rc"; }
 echo "ok: study through Slurm in $(( $(date +%s) - start )) s"
 
 # Both points went through sbatch: snakemake took their Slurm job ids, the job-completion log
@@ -171,7 +213,12 @@ PY
 sed -e 's/values = \[4.0, 6.0\]/values = [0.5]/' "$d/study.toml" > "$d/failing.toml"
 rc=0
 timeout 300 "$src/workflows/study" run "$d/failing.toml" --dir "$d/failing" --bin "$bin" \
-  --profile "$src/workflows/slurm" > "$d/failing.log" 2>&1 || rc=$?
+  --profile "$src/workflows/slurm" > "$d/failing.log" 2>&1 &
+study_pid=$!
+echo $study_pid > "$d/study.pid"
+wait $study_pid || rc=$?
+study_pid=
+rm -f "$d/study.pid"
 [ $rc -eq 1 ] || { tail -30 "$d/failing.log"; fail "a failing point: study exited $rc, expected 1"; }
 grep -q "^JobId=.*Name=tfmb-p001 JobState=FAILED" "$d/jobcomp.log" || fail "the failing point is no FAILED Slurm job in $d/jobcomp.log"
 grep -q "^p001_npr-0.5,0.5,failed (see logs/p001_npr-0.5.log)," "$d/failing/results.csv" \
