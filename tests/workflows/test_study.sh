@@ -95,6 +95,6 @@ sed 's/values = \[4.0, 6.0\]/values = [0.5]/' npr.toml > failing.toml
 rc=0
 "$study" run failing.toml --dir "$scratch/failing" --bin "$bin" --cores 2 > failing.log 2>&1 || rc=$?
 [ $rc -eq 1 ] || { tail -20 failing.log; fail "a failing point: exit $rc, expected 1"; }
-grep -q "^p001_npr-0.5,0.5,failed (see logs/p001_npr-0.5.log)," failing/results.csv || fail "failing/results.csv: $(cat failing/results.csv)"
+grep -q "^p001_npr-0.5,0.5,failed or unfinished (see logs/p001_npr-0.5.log)," failing/results.csv || fail "failing/results.csv: $(cat failing/results.csv)"
 grep -q "outside the allowed range" failing/logs/p001_npr-0.5.log || fail "the point's log does not say why it failed"
 echo "ok: a failing point fails the study (exit 1), its row marked failed"

@@ -221,6 +221,6 @@ study_pid=
 rm -f "$d/study.pid"
 [ $rc -eq 1 ] || { tail -30 "$d/failing.log"; fail "a failing point: study exited $rc, expected 1"; }
 grep -q "^JobId=.*Name=tfmb-p001 JobState=FAILED" "$d/jobcomp.log" || fail "the failing point is no FAILED Slurm job in $d/jobcomp.log"
-grep -q "^p001_npr-0.5,0.5,failed (see logs/p001_npr-0.5.log)," "$d/failing/results.csv" \
+grep -q "^p001_npr-0.5,0.5,failed or unfinished (see logs/p001_npr-0.5.log)," "$d/failing/results.csv" \
   || fail "the failing point is not marked failed in $d/failing/results.csv"
 echo "ok: a failing point fails its Slurm job and the study (exit 1), its row marked failed"
