@@ -1737,8 +1737,7 @@ void FlowSolver::relax_update(SolveLoop& s) {
       if (wall_node_bc_[i] >= 0) {
         nu_tilde_[i] = 0.0;
       } else if (std::isfinite(du_i[4])) {
-        const double limit =
-            settings_.max_turbulence_update * (std::abs(nu_tilde_[i]) + sa_nu_[i]);
+        const double limit = settings_.max_turbulence_update * (std::abs(nu_tilde_[i]) + sa_nu_[i]);
         nu_tilde_[i] += std::clamp(omega_i * du_i[4], -limit, limit);
       }
     }
