@@ -4,10 +4,10 @@
 #
 # config4 (SMOKE, tfmb-flow, coupling tolerance 1e-2: three coupling iterations) is run once
 # uninterrupted as the reference. Then the run is killed (SIGKILL to make's whole process group,
-# tests/workflows/interrupt-at as STAGE and COUPLE) at the start and at the end of every stage of
-# iterations 1 and 2, in the order the reference ran them (flow, loads, heat, matmap, beam,
-# loads-displace, strain, the coupling step; iteration 2 begins with mesh-deform), and at the
-# start and end of the report; the result must equal the reference's
+# tests/workflows/interrupt-at as STAGE, COUPLE and PLOT) at named points of iterations 1 and 2,
+# in the order the reference ran their stages (flow, loads, heat, matmap, beam, loads-displace,
+# strain, the coupling step; iteration 2 begins with mesh-deform), and at the start and the end
+# of the report, and resumed with `make twoway`; the result must equal the reference's
 # (tests/workflows/same-twoway-result: every dataset of every iterate bit for bit, coupling.csv
 # and coupling-state.npz, summary.json, the pictures; no .tmp file left). Then `make twoway` on
 # the finished run must run nothing and change no file (coupling.csv and summary.json byte for
@@ -15,11 +15,15 @@
 #
 #   test_twoway_resume.sh SOURCE_DIR SCRATCH_DIR BIN_DIR [chain|each [POINT...]]
 #
-# chain (default, CI): one run killed at every point in turn, each kill resumed by the next
-#   `make twoway`, then finished: every point is passed through (about 4 minutes on 2 cores).
-# each: for every point (or the POINTs given, e.g. iter-002/couple:end), a fresh run killed there
-#   and resumed, each compared with the reference (Makefile.cases twoway-interruptions; about
-#   30 runs).
+# chain (default, ctest workflows.twoway_resume): one run killed in turn at the end of every
+#   stage of iterations 1 and 2 (a kill at the start of a stage would find the same files), while
+#   their flow runs, at the start of iteration 2's first stage and at the start and end of the
+#   report (20 kills),
+#   each kill resumed by the next `make twoway`, the last one to the end; 284 s measured on 2
+#   cores under a load average of 11 (51 s of CPU).
+# each (Makefile.cases twoway-interruptions): for every point, at the start and at the end of
+#   every stage (32), or for the POINTs given (e.g. iter-002/couple:end), a fresh run killed
+#   there and resumed, each compared with the reference.
 set -uo pipefail
 src="$1"; scratch="$2"; bin="$3"; mode="${4:-chain}"; shift 4 2> /dev/null || shift $#
 case "$mode" in chain|each) ;; *) echo "usage: test_twoway_resume.sh SOURCE_DIR SCRATCH_DIR BIN_DIR [chain|each [POINT...]]" >&2; exit 2;; esac
@@ -71,6 +75,8 @@ if [ ${#points[@]} -eq 0 ]; then
       # before it left; only iteration 2's first stage (after iteration 1's coupling.status
       # and last-iteration were written) is killed at its start too.
       [ "$mode" = chain ] && [ "iter-$k/$s" != iter-002/mesh-deform ] || points+=("iter-$k/$s:start")
+      # (and the flow killed while it runs)
+      [ "$mode" = chain ] && [ "$s" = flow ] && points+=("iter-$k/$s:during")
       points+=("iter-$k/$s:end")
     done
   done
