@@ -11,7 +11,8 @@
 # (tests/workflows/same-twoway-result: every dataset of every iterate bit for bit, coupling.csv
 # and coupling-state.npz, summary.json, the pictures; no .tmp file left). Then `make twoway` on
 # the finished run must run nothing and change no file (coupling.csv and summary.json byte for
-# byte, every file's modification time).
+# byte, every file's modification time), and with a strain option changed must rerun the strain
+# stages and the coupling steps and no flow, to the same result.
 #
 #   test_twoway_resume.sh SOURCE_DIR SCRATCH_DIR BIN_DIR [chain|each [POINT...]]
 #
@@ -51,8 +52,9 @@ killed_at() {
     { tail -20 "$log"; fail "$point: the run was not killed there (exit $rc): the point was never reached"; }
   [ $rc -ne 0 ] || fail "$point: the killed run exited 0"
 }
-resume() {
-  mk twoway > "$scratch/resume.log" 2>&1 || { tail -30 "$scratch/resume.log"; fail "$1: the resumed make twoway failed"; }
+resume() {  # resume WHAT [VARIABLE=VALUE...]
+  local what="$1"; shift
+  mk "$@" twoway > "$scratch/resume.log" 2>&1 || { tail -30 "$scratch/resume.log"; fail "$what: the resumed make twoway failed"; }
 }
 same() {
   "$src/tests/workflows/same-twoway-result" "$ref" "$run" > "$scratch/same.log" 2>&1 ||
@@ -114,4 +116,12 @@ grep -q "workflows/stage\|interrupt-at [a-z]" "$scratch/resume.log" && { cat "$s
 [ "$(md5sum < "$run/summary.json")" = "$summary" ] || fail "make twoway rewrote a finished run's summary.json"
 diff <(echo "$before") <(snapshot) > "$scratch/changed.txt" || { cat "$scratch/changed.txt"; fail "make twoway on the finished run changed the files above"; }
 echo "finished run: make twoway ran nothing and changed no file ($ms ms)"
+
+# A strain option changed in the finished run: the strain stages and the coupling steps rerun,
+# each giving the same next displacement, which tfmb-couple leaves as it was: no flow reruns.
+resume "make twoway with STRAIN_OPTS changed" STRAIN_OPTS=--quiet
+stages=$(grep -o 'interrupt-at [a-z-]* [^ ]*/iter-[0-9]*' "$scratch/resume.log" | awk '{print $2}' | sort | uniq -c | tr -s ' ' | tr '\n' ';')
+[ "$stages" = " 3 strain;" ] || fail "STRAIN_OPTS changed: expected the three strain stages alone to rerun, ran [$stages]"
+same "STRAIN_OPTS changed"
+echo "strain option changed: the three strain stages and coupling steps reran, no flow; same result"
 echo "two-way resume test passed ($(( $(date +%s) - started )) s)"
