@@ -20,8 +20,8 @@
 #   stage of iterations 1 and 2 (a kill at the start of a stage would find the same files), while
 #   their flow runs, at the start of iteration 2's first stage and at the start and end of the
 #   report (20 kills),
-#   each kill resumed by the next `make twoway`, the last one to the end; 398 s measured by
-#   ctest on 2 cores under a load average of 12 (77 s of CPU).
+#   each kill resumed by the next `make twoway`, the last one to the end; 327 s measured by
+#   ctest on 2 cores under a load average of 10-11 (78 s of CPU).
 # each (Makefile.cases twoway-interruptions): for every point, at the start and at the end of
 #   every stage (32), or for the POINTs given (e.g. iter-002/couple:end), a fresh run killed
 #   there and resumed, each compared with the reference.
