@@ -426,8 +426,10 @@ def run_solver(case, faces, opts, label):
     stop_reason, stopped_at = None, None
 
     def forward(signum, frame):
+        # exit 4, not 1: an interrupted run wrote nothing (1 means "written, not converged",
+        # which Makefile.cases may accept)
         os.killpg(proc.pid, signal.SIGTERM)
-        raise SystemExit(f"{label}: interrupted; rhoPimpleFoam stopped")
+        raise Failure(f"interrupted (signal {signum}); rhoPimpleFoam stopped", 4)
     signal.signal(signal.SIGTERM, forward)
     signal.signal(signal.SIGINT, forward)
     while proc.poll() is None:
