@@ -1,9 +1,8 @@
 #!/usr/bin/env bash
 # workflows/adapters/openfoam-flow on a tiny config1 flow mesh (all triangles, 2,367 cells:
 # mesh.scale=6, no wall layers; 134 s on a loaded machine): a real OpenFOAM run (rhoPimpleFoam,
-# inviscid),
-# written by foamToVTK and imported by tfmb-convert import-flow, gives a flow.h5 that passes
-# tfmb-check and drives tfmb-loads, whose flap forces are finite and close to those from
+# inviscid), written by foamToVTK and imported by tfmb-convert import-flow, gives a flow.h5 that
+# passes tfmb-check and drives tfmb-loads, whose flap forces are finite and close to those from
 # tfmb-flow (Euler, first order) on the same mesh. Skips (exit code 77) only when OpenFOAM is
 # not installed.
 #
