@@ -1668,10 +1668,10 @@ GmresResult FlowSolver::newton_krylov_solve(SolveLoop& s) {
   return lin;
 }
 
-// The fraction omega of node i's mean-flow update du_i that is taken, and the relaxed conservative
-// state un it gives: the relative change of density and pressure limited, then omega halved until
-// the state is physical (0: the node keeps its state).
-double FlowSolver::node_relaxation(int i, const double* du_i, State& un) const {
+// The fraction omega of node i's update du_i that is taken, and the relaxed conservative state
+// un it gives: the relative change of density and pressure (and, coupled, of nu_tilde) limited,
+// then omega halved until the state is physical (0: the node keeps its state).
+double FlowSolver::node_relaxation(int i, const double* du_i, bool coupled, State& un) const {
   un = u_[i];
   for (int v = 0; v < 4; ++v)
     un[v] += du_i[v];
@@ -1683,6 +1683,17 @@ double FlowSolver::node_relaxation(int i, const double* du_i, State& un) const {
     omega_i = 0.0;
   else if (change > settings_.max_relative_update)
     omega_i = settings_.max_relative_update / change;
+  if (coupled && wall_node_bc_[i] < 0) {
+    // nu_tilde may grow by a factor 1 + max_turbulence_update per step and fall by the
+    // same fraction of its scale |nu_tilde| + nu: the Newton step of the source terms
+    // overshoots where production outruns destruction (a physicality-based step limit)
+    const double scale = std::abs(nu_tilde_[i]) + sa_nu_[i];
+    const double change_nu = std::abs(du_i[4]) / scale;
+    if (!std::isfinite(change_nu))
+      omega_i = 0.0;
+    else if (change_nu * omega_i > settings_.max_turbulence_update)
+      omega_i = settings_.max_turbulence_update / change_nu;
+  }
   // The primitive change is not linear in omega (kinetic energy): halve omega until the
   // relaxed state is physical and within the allowed change, rather than freezing the node
   // (a frozen node near a near-vacuum lip corner never recovers, its residual grows and the
@@ -1724,22 +1735,14 @@ void FlowSolver::relax_update(SolveLoop& s) {
   for (int i = 0; i < n; ++i) {
     const double* du_i = s.du.data() + nb * static_cast<std::size_t>(i);
     State un;
-    const double omega_i = node_relaxation(i, du_i, un);
+    const double omega_i = node_relaxation(i, du_i, coupled, un);
     u_[i] = un;
     if (coupled) {
-      // The same fraction of the Newton step for nu_tilde, clipped as the segregated step clips
-      // it: nu_tilde changes by at most max_turbulence_update of its scale |nu_tilde| + nu (a
-      // physicality-based limit: the Newton step of the source terms overshoots where
-      // production outruns destruction). Strong 0 on no-slip walls. Clipped, not relaxing the
-      // node: relaxing the whole node held the mean flow back wherever nu_tilde moved fast
-      // (nasa-2dcd NPR 8.91: 0.1-0.7 over the plume's shear layers for 50 iterations, and the
-      // CFL number with it; tools/tfmb-flow/README.md, "Coupled SA Newton step").
-      if (wall_node_bc_[i] >= 0) {
+      // the same fraction of the Newton step for nu_tilde; strong 0 on no-slip walls
+      if (wall_node_bc_[i] >= 0)
         nu_tilde_[i] = 0.0;
-      } else if (std::isfinite(du_i[4])) {
-        const double limit = settings_.max_turbulence_update * (std::abs(nu_tilde_[i]) + sa_nu_[i]);
-        nu_tilde_[i] += std::clamp(omega_i * du_i[4], -limit, limit);
-      }
+      else if (std::isfinite(du_i[4]))
+        nu_tilde_[i] += omega_i * du_i[4];
     }
     if (omega_i < 1.0)
       ++limited;

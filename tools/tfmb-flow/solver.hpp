@@ -390,7 +390,7 @@ class FlowSolver {
   void linear_step(SolveLoop& s);
   GmresResult newton_krylov_solve(SolveLoop& s);
   void relax_update(SolveLoop& s);
-  double node_relaxation(int i, const double* du_i, State& un) const;
+  double node_relaxation(int i, const double* du_i, bool coupled, State& un) const;
   void accept_or_reject_step(SolveLoop& s);
   void report_progress(SolveLoop& s);
   bool march_stopped(SolveLoop& s);  // true: the run gives up
