@@ -103,6 +103,42 @@ inline void copy_prefix(formats::Document& doc, const std::string& from, const s
       doc.groups.insert(renamed(g));
 }
 
+/// Adds flap `name`, straight from a to b in `elements` elements, with the diagonal section
+/// stiffness (EA, GA, GA, GJ = 2 EI, EI, EI) [N, N m^2], copied from the example flap "sample"
+/// (which the caller erases when done).
+inline void add_straight_flap(formats::Document& doc, const std::string& name, int order,
+                              Eigen::Vector2d a, Eigen::Vector2d b, int elements, double ea,
+                              double ga, double ei) {
+  const std::string g = "/flaps/" + name;
+  copy_prefix(doc, "/flaps/sample", g);
+  doc.attributes[g]["order"].integer = order;
+  doc.attributes[g]["elements"].integer = elements;
+  const Eigen::Vector2d t = (b - a).normalized(), n(-t.y(), t.x());
+  std::vector<std::vector<double>> line, inner, outer;
+  std::vector<double> arc;
+  for (int i = 0; i <= elements; ++i) {
+    const double s = static_cast<double>(i) / elements;
+    const Eigen::Vector2d x = a + s * (b - a);
+    line.push_back({x.x(), x.y()});
+    inner.push_back({x.x() - 0.005 * n.x(), x.y() - 0.005 * n.y()});
+    outer.push_back({x.x() + 0.005 * n.x(), x.y() + 0.005 * n.y()});
+    arc.push_back(s * (b - a).norm());
+  }
+  set_matrix(doc.datasets[g + "/reference_curve"], line);
+  set_matrix(doc.datasets[g + "/reference_geometry"], line);
+  set_matrix(doc.datasets[g + "/inner_wall"], inner);
+  set_matrix(doc.datasets[g + "/outer_wall"], outer);
+  doc.datasets[g + "/wall_arc_length"].shape = {arc.size()};
+  doc.datasets[g + "/wall_arc_length"].floats = arc;
+  set_matrix(doc.datasets[g + "/solid_outline"],
+             {inner.front(), inner.back(), outer.back(), outer.front()});
+  std::vector<std::vector<double>> k(6, std::vector<double>(6, 0.0));
+  const double diag_k[6] = {ea, ga, ga, 2.0 * ei, ei, ei};
+  for (int i = 0; i < 6; ++i)
+    k[i][i] = diag_k[i];
+  set_matrix(doc.datasets[g + "/section_stiffness"], k);
+}
+
 /// Lee's frame through model.h5 (cases::lee_frame scaled to members of 1.2 m with the same
 /// slenderness: EI = 100 N m^2, EA = 43200 EI / L^2, GA = EA / 2.6 * 5 / 6): a column, the beam
 /// split at 1/5 of its length from the corner into flaps "short" and "long", joined rigidly, the
@@ -113,45 +149,9 @@ inline fs::path write_lee_frame_model(const fs::path& dir) {
   formats::Document doc = formats::read_document(h5::Reader(file));
   const double length = 1.2, ei = 100.0, ea = 43200.0 * ei / (length * length),
                ga = ea / 2.6 * 5.0 / 6.0;
-  struct Piece {
-    std::string name;
-    Eigen::Vector2d a, b;
-    int elements;
-  };
-  const std::vector<Piece> pieces = {{"column", {0, 0}, {0, length}, 10},
-                                     {"short", {0, length}, {0.2 * length, length}, 2},
-                                     {"long", {0.2 * length, length}, {length, length}, 8}};
-  for (std::size_t p = 0; p < pieces.size(); ++p) {
-    const Piece& piece = pieces[p];
-    const std::string g = "/flaps/" + piece.name;
-    copy_prefix(doc, "/flaps/sample", g);
-    doc.attributes[g]["order"].integer = static_cast<std::int64_t>(p);
-    doc.attributes[g]["elements"].integer = piece.elements;
-    const Eigen::Vector2d t = (piece.b - piece.a).normalized(), n(-t.y(), t.x());
-    std::vector<std::vector<double>> line, inner, outer;
-    std::vector<double> arc;
-    for (int i = 0; i <= piece.elements; ++i) {
-      const double s = static_cast<double>(i) / piece.elements;
-      const Eigen::Vector2d x = piece.a + s * (piece.b - piece.a);
-      line.push_back({x.x(), x.y()});
-      inner.push_back({x.x() - 0.005 * n.x(), x.y() - 0.005 * n.y()});
-      outer.push_back({x.x() + 0.005 * n.x(), x.y() + 0.005 * n.y()});
-      arc.push_back(s * (piece.b - piece.a).norm());
-    }
-    set_matrix(doc.datasets[g + "/reference_curve"], line);
-    set_matrix(doc.datasets[g + "/reference_geometry"], line);
-    set_matrix(doc.datasets[g + "/inner_wall"], inner);
-    set_matrix(doc.datasets[g + "/outer_wall"], outer);
-    doc.datasets[g + "/wall_arc_length"].shape = {arc.size()};
-    doc.datasets[g + "/wall_arc_length"].floats = arc;
-    set_matrix(doc.datasets[g + "/solid_outline"],
-               {inner.front(), inner.back(), outer.back(), outer.front()});
-    std::vector<std::vector<double>> k(6, std::vector<double>(6, 0.0));
-    const double diag_k[6] = {ea, ga, ga, 2.0 * ei, ei, ei};
-    for (int i = 0; i < 6; ++i)
-      k[i][i] = diag_k[i];
-    set_matrix(doc.datasets[g + "/section_stiffness"], k);
-  }
+  add_straight_flap(doc, "column", 0, {0, 0}, {0, length}, 10, ea, ga, ei);
+  add_straight_flap(doc, "short", 1, {0, length}, {0.2 * length, length}, 2, ea, ga, ei);
+  add_straight_flap(doc, "long", 2, {0.2 * length, length}, {length, length}, 8, ea, ga, ei);
   erase_prefix(doc, "/flaps/sample");
   auto rigid = [&](const std::string& name, const std::string& a, const std::string& b,
                    Eigen::Vector2d at) {
