@@ -151,8 +151,12 @@ JointSpec flap_joint(const FileModel& fm, const formats::Model& in, const format
     j.kind = JointKind::rigid;
   } else if (joint.kind == "revolute" || joint.kind == "revolute_spring") {
     j.kind = JointKind::revolute;
-    j.spring_stiffness = joint.stiffness;
-    j.damping = joint.damping;
+    // the spring is revolute_spring's (formats/model.md): a plain revolute joint is an ideal
+    // hinge even if the file carries a stiffness meant for another kind
+    if (joint.kind == "revolute_spring") {
+      j.spring_stiffness = joint.stiffness;
+      j.damping = joint.damping;
+    }
   } else if (joint.kind == "prescribed_rotation") {
     j.kind = JointKind::revolute;
     j.prescribed = true;
