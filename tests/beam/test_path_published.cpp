@@ -229,8 +229,8 @@ TEST(PublishedPath, LeeFrameFollowsSimoVuQuocFromTenLoadSteps) {
 // arc-length solver converges the residual to 1e-9 relative; the rows were measured within 9e-8
 // P_max of the exact path, and the tolerance is 1e-6 P_max. What it tells apart: Green's strain in
 // the bars would move the path by up to 1.7e-3 P_max, bars 5 % stiffer by 0.07 P_max (measured: the
-// test fails), and a torsional stiffness of 1 N m/rad in the hinges by 0.028 P_max (measured: it failed
-// while tfmb-beam gave a revolute joint the example's stray revolute_spring stiffness).
+// test fails), and a torsional stiffness of 1 N m/rad in the hinges by 0.028 P_max (measured: it
+// failed while tfmb-beam gave a revolute joint the example's stray revolute_spring stiffness).
 TEST(PublishedPath, ShallowTrussWithSpringSnapsThroughAndBack) {
   const fs::path dir = scratch("truss-with-spring-path");
   const TrussWithSpring t;
