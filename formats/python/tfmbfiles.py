@@ -137,7 +137,8 @@ def _shape_text(shape):
 
 def dataset(f, key, dtype=float, shape=None, below=None):
     """Dataset `key` of `f` as a numpy array of `dtype` (float: float64, int: int64), refusing a
-    missing dataset, a dtype that does not convert without loss, a shape other than `shape`
+    missing dataset, a dtype of another kind (integers for floats included: the specs say
+    float64), a shape other than `shape`
     (a tuple; None matches any extent), for floats NaN or infinity and, with `below`, values
     outside [0, below) (indices into another dataset)."""
     import h5py
@@ -149,7 +150,9 @@ def dataset(f, key, dtype=float, shape=None, below=None):
             raise BadInput.at(f, key, "is a group, expected a dataset")
         stored_dtype, stored_shape = d.dtype, d.shape
     want = np.dtype(np.float64 if dtype is float else np.int64 if dtype is int else dtype)
-    allowed = "iu" if want.kind in "iu" else "fiu" if want.kind == "f" else want.kind
+    # Floats stored as integers are refused, as the C++ readers do (the specs say float64): a
+    # displacement written as int64 had lost its fractions, and tfmb-couple iterated on it.
+    allowed = "iu" if want.kind in "iu" else want.kind
     if stored_dtype.kind not in allowed:
         raise BadInput.at(f, key, f"wrong dtype {stored_dtype}, expected {want}")
     if shape is not None and (len(stored_shape) != len(shape) or
@@ -206,7 +209,9 @@ def throat_height(f):
     halves = {"upper": [], "lower": []}
     for name in members(f, "flaps") if "flaps" in f else []:
         half = attr(f, f"flaps/{name}", "half", str, default="")
-        if half in halves and f"flaps/{name}/inner_wall" in f:
+        # inner_wall is required (model.md): a flap without it was left out, and the throat
+        # (and so the discharge coefficient) silently came from the other flaps.
+        if half in halves:
             halves[half].append(dataset(f, f"flaps/{name}/inner_wall", shape=(None, 2)))
     if not halves["upper"] or not halves["lower"]:
         return None

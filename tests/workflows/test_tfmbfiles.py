@@ -116,8 +116,31 @@ expect_bad("float for int", lambda: read(good, key="walls/upper/displacement", d
 expect_bad("index out of range", lambda: read(good, key="walls/upper/node", dtype=int, below=2),
            "good.h5: /walls/upper/node: index 2 at flat index 2 out of range [0, 2)")
 assert list(read(good, key="walls/upper/node", dtype=int, below=3)) == [0, 1, 2]
+expect_bad("int for float", lambda: read(write("int.h5", walls={"upper": np.ones((3, 2), np.int64)})),
+           "int.h5: /walls/upper/displacement: wrong dtype int64, expected float64")
 strings = write("strings.h5", walls={"upper": np.array([b"a", b"b"])})
 expect_bad("strings for floats", lambda: read(strings), "strings.h5: /walls/upper/displacement: wrong dtype")
+
+# throat_height (flow-args' --throat-area): a flap of a half without its inner_wall is refused,
+# not left out of the throat.
+with h5py.File("throat.h5", "w") as f:
+    f.attrs["format"], f.attrs["format_version"] = "tfmb/model", "2.7"
+    for name, half, y in (("u", "upper", 1.0), ("l", "lower", -1.0)):
+        f.create_group(f"flaps/{name}").attrs["half"] = half
+        f[f"flaps/{name}/inner_wall"] = np.array([[0.0, y], [1.0, y]])
+with open_kind("throat.h5", "model") as f:
+    assert tfmbfiles.throat_height(f) == 2.0
+with h5py.File("throat.h5", "r+") as f:
+    del f["flaps/l/inner_wall"]
+
+
+def inside_model(path, read_with):
+    with open_kind(path, "model") as f:
+        return read_with(f)
+
+
+expect_bad("throat without an inner wall", lambda: inside_model("throat.h5", tfmbfiles.throat_height),
+           "throat.h5: /flaps/l/inner_wall: missing dataset")
 
 
 def read_attr(path, key, name, kind=float):
