@@ -135,12 +135,13 @@ def _shape_text(shape):
     return "(" + ",".join(parts) + ("," if len(parts) == 1 else "") + ")"
 
 
-def dataset(f, key, dtype=float, shape=None, below=None):
+def dataset(f, key, dtype=float, shape=None, below=None, positive=False):
     """Dataset `key` of `f` as a numpy array of `dtype` (float: float64, int: int64), refusing a
     missing dataset, a dtype of another kind (integers for floats included: the specs say
     float64), a shape other than `shape`
     (a tuple; None matches any extent), for floats NaN or infinity and, with `below`, values
-    outside [0, below) (indices into another dataset)."""
+    outside [0, below) (indices into another dataset) and, with `positive`, values that are not
+    above zero (absolute pressures and temperatures)."""
     import h5py
     with _Guard(f, key):
         if key not in f:
@@ -166,6 +167,9 @@ def dataset(f, key, dtype=float, shape=None, below=None):
         where = f" (row {i // values.shape[1]}, column {i % values.shape[1]})" \
             if values.ndim == 2 and values.shape[1] else ""
         raise BadInput.at(f, key, f"non-finite value {values.flat[i]} at flat index {i}{where}")
+    if positive and values.size and not np.all(values > 0):
+        i = int(np.flatnonzero(~(values > 0))[0])
+        raise BadInput.at(f, key, f"value {values.flat[i]} at flat index {i} is not positive")
     if below is not None and values.size and not (values.min() >= 0 and values.max() < below):
         i = int(np.flatnonzero((values < 0) | (values >= below))[0])
         raise BadInput.at(f, key, f"index {values.flat[i]} at flat index {i} out of range [0, {below})")

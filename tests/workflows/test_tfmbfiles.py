@@ -118,6 +118,9 @@ expect_bad("index out of range", lambda: read(good, key="walls/upper/node", dtyp
 assert list(read(good, key="walls/upper/node", dtype=int, below=3)) == [0, 1, 2]
 expect_bad("int for float", lambda: read(write("int.h5", walls={"upper": np.ones((3, 2), np.int64)})),
            "int.h5: /walls/upper/displacement: wrong dtype int64, expected float64")
+expect_bad("zero for a positive", lambda: read(good, positive=True),
+           "good.h5: /walls/upper/displacement: value 0.0 at flat index 0 is not positive")
+assert read(write("ones.h5", walls={"upper": np.ones((3, 2))}), positive=True).shape == (3, 2)
 strings = write("strings.h5", walls={"upper": np.array([b"a", b"b"])})
 expect_bad("strings for floats", lambda: read(strings), "strings.h5: /walls/upper/displacement: wrong dtype")
 
