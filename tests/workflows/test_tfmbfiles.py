@@ -201,6 +201,21 @@ for label, command, located in scripts:
     else:
         print(f"ok   {label}: {lines[0]}")
 
+# nodal-forces lump leaves no temporary file when an input turns out bad after the output was
+# begun (a dangling link in place of nodal_force; the mutation suite found lumped.h5.tmp left).
+with h5py.File("dangling-loads.h5", "w") as f:
+    f.attrs["format"], f.attrs["format_version"] = "tfmb/loads", "1.2"
+    f["flaps/a/s"] = np.array([0.0, 1.0])
+    f["flaps/a/nodal_force"] = h5py.SoftLink("/no/such/dataset")
+r = subprocess.run([f"{src}/workflows/nodal-forces", "lump", "dangling-loads.h5", "-o", "lumped.h5"],
+                   capture_output=True, text=True)
+left = [n for n in os.listdir(".") if n.startswith("lumped.h5")]
+if r.returncode != 3 or left or "dangling-loads.h5: /flaps/a/nodal_force" not in r.stderr:
+    failures.append(f"nodal-forces lump on a dangling link: exit {r.returncode}, left {left}, "
+                    f"stderr {r.stderr!r}")
+else:
+    print("ok   nodal-forces lump on a dangling link: exit 3, nothing left")
+
 if failures:
     print("\n".join(f"FAIL {f}" for f in failures))
     sys.exit(1)
