@@ -216,6 +216,20 @@ if r.returncode != 3 or left or "dangling-loads.h5: /flaps/a/nodal_force" not in
 else:
     print("ok   nodal-forces lump on a dangling link: exit 3, nothing left")
 
+# ... and refuses a flap without distributed_force in one line (it was a KeyError traceback).
+with h5py.File("no-distributed.h5", "w") as f:
+    f.attrs["format"], f.attrs["format_version"] = "tfmb/loads", "1.2"
+    f["flaps/a/s"] = np.array([0.0, 1.0])
+    for key in ("nodal_force", "nodal_moment", "distributed_moment"):
+        f[f"flaps/a/{key}"] = np.zeros((2, 3))
+r = subprocess.run([f"{src}/workflows/nodal-forces", "lump", "no-distributed.h5", "-o", "lumped.h5"],
+                   capture_output=True, text=True)
+if r.returncode != 3 or "no-distributed.h5: /flaps/a/distributed_force: missing dataset" not in r.stderr \
+        or os.listdir(".").count("lumped.h5.tmp"):
+    failures.append(f"nodal-forces lump without distributed_force: exit {r.returncode}, stderr {r.stderr!r}")
+else:
+    print("ok   nodal-forces lump without distributed_force: exit 3")
+
 if failures:
     print("\n".join(f"FAIL {f}" for f in failures))
     sys.exit(1)
