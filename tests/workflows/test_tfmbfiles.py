@@ -216,6 +216,32 @@ if r.returncode != 3 or left or "dangling-loads.h5: /flaps/a/nodal_force" not in
 else:
     print("ok   nodal-forces lump on a dangling link: exit 3, nothing left")
 
+# tfmb-couple checks the wall points beside the displacement: an empty displacement beside three
+# x0 rows was iterated on as a wall of no points (the mutation suite).
+with h5py.File("empty-displacement.h5", "w") as f:
+    f.attrs["format"], f.attrs["format_version"] = "tfmb/walldisp", "1.1"
+    f["walls/upper/displacement"] = np.zeros((0, 2))
+    f["walls/upper/x0"] = np.zeros((3, 2))
+r = subprocess.run([f"{src}/workflows/tfmb-couple", "--iteration", "1", "--raw", "empty-displacement.h5",
+                    "--state", "s.npz", "--log", "l.csv", "-o", "next.h5"], capture_output=True, text=True)
+if r.returncode != 3 or "empty-displacement.h5: /walls/upper/x0: wrong shape (3,2), expected (0,2)" \
+        not in r.stderr or os.path.exists("next.h5") or os.path.exists("s.npz"):
+    failures.append(f"tfmb-couple with x0 and displacement of other lengths: exit {r.returncode}, "
+                    f"stderr {r.stderr!r}")
+else:
+    print("ok   tfmb-couple with x0 and displacement of other lengths: exit 3")
+
+with h5py.File("no-points.h5", "w") as f:
+    f.attrs["format"], f.attrs["format_version"] = "tfmb/walldisp", "1.1"
+    f["walls/upper/displacement"] = np.zeros((0, 2))
+    f["walls/upper/x0"] = np.zeros((0, 2))
+r = subprocess.run([f"{src}/workflows/tfmb-couple", "--iteration", "1", "--raw", "no-points.h5",
+                    "--state", "s.npz", "--log", "l.csv", "-o", "next.h5"], capture_output=True, text=True)
+if r.returncode != 3 or "no-points.h5: /walls: no wall points" not in r.stderr:
+    failures.append(f"tfmb-couple on a walldisp without points: exit {r.returncode}, stderr {r.stderr!r}")
+else:
+    print("ok   tfmb-couple on a walldisp without points: exit 3")
+
 # ... and refuses a flap without distributed_force in one line (it was a KeyError traceback).
 with h5py.File("no-distributed.h5", "w") as f:
     f.attrs["format"], f.attrs["format_version"] = "tfmb/loads", "1.2"
