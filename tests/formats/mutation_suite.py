@@ -55,7 +55,7 @@ mutation classes are taken round-robin per kind so that a small --per-kind still
 --keep keeps every run's folder (by default only those of findings stay, in SCRATCH/runs/).
 --known FILE: findings not fixed yet (tests/formats/mutation-known.txt, what ctest
 formats.mutation_suite tolerates at its small cap); they print as KNOWN and do not fail the run.
-`make -f Makefile.cases fuzz` runs the full suite (40 mutants per kind, no known list).
+`make -f Makefile.cases fuzz` runs the full suite (25 mutants per kind, no known list).
 """
 import argparse
 import concurrent.futures
@@ -607,7 +607,7 @@ def main():
     parser.add_argument("bin")
     parser.add_argument("scratch")
     parser.add_argument("--seed", type=int, default=23)
-    parser.add_argument("--per-kind", type=int, default=40,
+    parser.add_argument("--per-kind", type=int, default=25,
                         help="mutants per kind of the chain's files, each run by every reader")
     parser.add_argument("--per-example", type=int, default=8,
                         help="mutants per kind of tfmb-check --example, run by tfmb-check")
