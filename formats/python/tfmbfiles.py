@@ -135,11 +135,13 @@ def _shape_text(shape):
     return "(" + ",".join(parts) + ("," if len(parts) == 1 else "") + ")"
 
 
-def dataset(f, key, dtype=float, shape=None, below=None):
+def dataset(f, key, dtype=float, shape=None, below=None, positive=False):
     """Dataset `key` of `f` as a numpy array of `dtype` (float: float64, int: int64), refusing a
-    missing dataset, a dtype that does not convert without loss, a shape other than `shape`
+    missing dataset, a dtype of another kind (integers for floats included: the specs say
+    float64), a shape other than `shape`
     (a tuple; None matches any extent), for floats NaN or infinity and, with `below`, values
-    outside [0, below) (indices into another dataset)."""
+    outside [0, below) (indices into another dataset) and, with `positive`, values that are not
+    above zero (absolute pressures and temperatures)."""
     import h5py
     with _Guard(f, key):
         if key not in f:
@@ -149,7 +151,9 @@ def dataset(f, key, dtype=float, shape=None, below=None):
             raise BadInput.at(f, key, "is a group, expected a dataset")
         stored_dtype, stored_shape = d.dtype, d.shape
     want = np.dtype(np.float64 if dtype is float else np.int64 if dtype is int else dtype)
-    allowed = "iu" if want.kind in "iu" else "fiu" if want.kind == "f" else want.kind
+    # Floats stored as integers are refused, as the C++ readers do (the specs say float64): a
+    # displacement written as int64 had lost its fractions, and tfmb-couple iterated on it.
+    allowed = "iu" if want.kind in "iu" else want.kind
     if stored_dtype.kind not in allowed:
         raise BadInput.at(f, key, f"wrong dtype {stored_dtype}, expected {want}")
     if shape is not None and (len(stored_shape) != len(shape) or
@@ -163,6 +167,9 @@ def dataset(f, key, dtype=float, shape=None, below=None):
         where = f" (row {i // values.shape[1]}, column {i % values.shape[1]})" \
             if values.ndim == 2 and values.shape[1] else ""
         raise BadInput.at(f, key, f"non-finite value {values.flat[i]} at flat index {i}{where}")
+    if positive and values.size and not np.all(values > 0):
+        i = int(np.flatnonzero(~(values > 0))[0])
+        raise BadInput.at(f, key, f"value {values.flat[i]} at flat index {i} is not positive")
     if below is not None and values.size and not (values.min() >= 0 and values.max() < below):
         i = int(np.flatnonzero((values < 0) | (values >= below))[0])
         raise BadInput.at(f, key, f"index {values.flat[i]} at flat index {i} out of range [0, {below})")
@@ -206,7 +213,9 @@ def throat_height(f):
     halves = {"upper": [], "lower": []}
     for name in members(f, "flaps") if "flaps" in f else []:
         half = attr(f, f"flaps/{name}", "half", str, default="")
-        if half in halves and f"flaps/{name}/inner_wall" in f:
+        # inner_wall is required (model.md): a flap without it was left out, and the throat
+        # (and so the discharge coefficient) silently came from the other flaps.
+        if half in halves:
             halves[half].append(dataset(f, f"flaps/{name}/inner_wall", shape=(None, 2)))
     if not halves["upper"] or not halves["lower"]:
         return None

@@ -99,6 +99,16 @@ FlowWall read_wall(const h5::Reader& r, const std::string& name, std::int64_t no
   }
   for (std::size_t k = 0; k < n; ++k)
     if (!(t.pressure[k] > 0.0)) r.fail(g + "/pressure", "point " + std::to_string(k) + ": not positive");
+  // Absolute temperatures: tfmb-heat takes them as its wall conditions, and a negated one was
+  // refused only later, as a solid temperature at a mesh node, without naming this file.
+  for (auto [dataset, values] :
+       {std::pair{"temperature", &t.temperature},
+        std::pair{"adiabatic_wall_temperature", &t.adiabatic_wall_temperature}}) {
+    for (std::size_t k = 0; k < values->size(); ++k)
+      if (!((*values)[k] > 0.0))
+        r.fail(g + "/" + dataset, "point " + std::to_string(k) + ": not positive (" +
+                                      std::to_string((*values)[k]) + " K)");
+  }
   return t;
 }
 
@@ -222,6 +232,19 @@ Flow read_flow(const std::filesystem::path& file) {
   flow.ambient_pressure = r.attr_f64("/conditions", "ambient_pressure");
   flow.gamma = r.attr_f64("/conditions", "gamma");
   flow.gas_constant = r.attr_f64("/conditions", "gas_constant");
+  // The gas state of the conditions is physical: positive absolute pressures and temperature,
+  // positive gas constant, gamma > 1 (a restart and the heat-transfer probe divide by gamma - 1).
+  for (auto [name, value] : {std::pair{"stagnation_pressure", flow.stagnation_pressure},
+                             std::pair{"stagnation_temperature", flow.stagnation_temperature},
+                             std::pair{"ambient_pressure", flow.ambient_pressure},
+                             std::pair{"gas_constant", flow.gas_constant}}) {
+    if (!(value > 0.0))
+      r.fail("/conditions",
+             std::string("attribute '") + name + "' must be positive, is " + std::to_string(value));
+  }
+  if (!(flow.gamma > 1.0))
+    r.fail("/conditions",
+           "attribute 'gamma' must be greater than 1, is " + std::to_string(flow.gamma));
   flow.convergence = read_convergence(r);
   return flow;
 }

@@ -116,8 +116,34 @@ expect_bad("float for int", lambda: read(good, key="walls/upper/displacement", d
 expect_bad("index out of range", lambda: read(good, key="walls/upper/node", dtype=int, below=2),
            "good.h5: /walls/upper/node: index 2 at flat index 2 out of range [0, 2)")
 assert list(read(good, key="walls/upper/node", dtype=int, below=3)) == [0, 1, 2]
+expect_bad("int for float", lambda: read(write("int.h5", walls={"upper": np.ones((3, 2), np.int64)})),
+           "int.h5: /walls/upper/displacement: wrong dtype int64, expected float64")
+expect_bad("zero for a positive", lambda: read(good, positive=True),
+           "good.h5: /walls/upper/displacement: value 0.0 at flat index 0 is not positive")
+assert read(write("ones.h5", walls={"upper": np.ones((3, 2))}), positive=True).shape == (3, 2)
 strings = write("strings.h5", walls={"upper": np.array([b"a", b"b"])})
 expect_bad("strings for floats", lambda: read(strings), "strings.h5: /walls/upper/displacement: wrong dtype")
+
+# throat_height (flow-args' --throat-area): a flap of a half without its inner_wall is refused,
+# not left out of the throat.
+with h5py.File("throat.h5", "w") as f:
+    f.attrs["format"], f.attrs["format_version"] = "tfmb/model", "2.7"
+    for name, half, y in (("u", "upper", 1.0), ("l", "lower", -1.0)):
+        f.create_group(f"flaps/{name}").attrs["half"] = half
+        f[f"flaps/{name}/inner_wall"] = np.array([[0.0, y], [1.0, y]])
+with open_kind("throat.h5", "model") as f:
+    assert tfmbfiles.throat_height(f) == 2.0
+with h5py.File("throat.h5", "r+") as f:
+    del f["flaps/l/inner_wall"]
+
+
+def inside_model(path, read_with):
+    with open_kind(path, "model") as f:
+        return read_with(f)
+
+
+expect_bad("throat without an inner wall", lambda: inside_model("throat.h5", tfmbfiles.throat_height),
+           "throat.h5: /flaps/l/inner_wall: missing dataset")
 
 
 def read_attr(path, key, name, kind=float):
@@ -174,6 +200,61 @@ for label, command, located in scripts:
         failures.append(f"{label}: exit {r.returncode}, stderr {r.stderr!r}; expected 3 and one line with {located!r}")
     else:
         print(f"ok   {label}: {lines[0]}")
+
+# nodal-forces lump leaves no temporary file when an input turns out bad after the output was
+# begun (a dangling link in place of nodal_force; the mutation suite found lumped.h5.tmp left).
+with h5py.File("dangling-loads.h5", "w") as f:
+    f.attrs["format"], f.attrs["format_version"] = "tfmb/loads", "1.2"
+    f["flaps/a/s"] = np.array([0.0, 1.0])
+    f["flaps/a/nodal_force"] = h5py.SoftLink("/no/such/dataset")
+r = subprocess.run([f"{src}/workflows/nodal-forces", "lump", "dangling-loads.h5", "-o", "lumped.h5"],
+                   capture_output=True, text=True)
+left = [n for n in os.listdir(".") if n.startswith("lumped.h5")]
+if r.returncode != 3 or left or "dangling-loads.h5: /flaps/a/nodal_force" not in r.stderr:
+    failures.append(f"nodal-forces lump on a dangling link: exit {r.returncode}, left {left}, "
+                    f"stderr {r.stderr!r}")
+else:
+    print("ok   nodal-forces lump on a dangling link: exit 3, nothing left")
+
+# tfmb-couple checks the wall points beside the displacement: an empty displacement beside three
+# x0 rows was iterated on as a wall of no points (the mutation suite).
+with h5py.File("empty-displacement.h5", "w") as f:
+    f.attrs["format"], f.attrs["format_version"] = "tfmb/walldisp", "1.1"
+    f["walls/upper/displacement"] = np.zeros((0, 2))
+    f["walls/upper/x0"] = np.zeros((3, 2))
+r = subprocess.run([f"{src}/workflows/tfmb-couple", "--iteration", "1", "--raw", "empty-displacement.h5",
+                    "--state", "s.npz", "--log", "l.csv", "-o", "next.h5"], capture_output=True, text=True)
+if r.returncode != 3 or "empty-displacement.h5: /walls/upper/x0: wrong shape (3,2), expected (0,2)" \
+        not in r.stderr or os.path.exists("next.h5") or os.path.exists("s.npz"):
+    failures.append(f"tfmb-couple with x0 and displacement of other lengths: exit {r.returncode}, "
+                    f"stderr {r.stderr!r}")
+else:
+    print("ok   tfmb-couple with x0 and displacement of other lengths: exit 3")
+
+with h5py.File("no-points.h5", "w") as f:
+    f.attrs["format"], f.attrs["format_version"] = "tfmb/walldisp", "1.1"
+    f["walls/upper/displacement"] = np.zeros((0, 2))
+    f["walls/upper/x0"] = np.zeros((0, 2))
+r = subprocess.run([f"{src}/workflows/tfmb-couple", "--iteration", "1", "--raw", "no-points.h5",
+                    "--state", "s.npz", "--log", "l.csv", "-o", "next.h5"], capture_output=True, text=True)
+if r.returncode != 3 or "no-points.h5: /walls: no wall points" not in r.stderr:
+    failures.append(f"tfmb-couple on a walldisp without points: exit {r.returncode}, stderr {r.stderr!r}")
+else:
+    print("ok   tfmb-couple on a walldisp without points: exit 3")
+
+# ... and refuses a flap without distributed_force in one line (it was a KeyError traceback).
+with h5py.File("no-distributed.h5", "w") as f:
+    f.attrs["format"], f.attrs["format_version"] = "tfmb/loads", "1.2"
+    f["flaps/a/s"] = np.array([0.0, 1.0])
+    for key in ("nodal_force", "nodal_moment", "distributed_moment"):
+        f[f"flaps/a/{key}"] = np.zeros((2, 3))
+r = subprocess.run([f"{src}/workflows/nodal-forces", "lump", "no-distributed.h5", "-o", "lumped.h5"],
+                   capture_output=True, text=True)
+if r.returncode != 3 or "no-distributed.h5: /flaps/a/distributed_force: missing dataset" not in r.stderr \
+        or os.listdir(".").count("lumped.h5.tmp"):
+    failures.append(f"nodal-forces lump without distributed_force: exit {r.returncode}, stderr {r.stderr!r}")
+else:
+    print("ok   nodal-forces lump without distributed_force: exit 3")
 
 if failures:
     print("\n".join(f"FAIL {f}" for f in failures))

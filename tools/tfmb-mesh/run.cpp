@@ -98,7 +98,20 @@ int run(const Options& options, const Logger& log) {
     out.header.creator = "tfmb-mesh " + cli::version();
     out.header.depth = in.header.depth;
     out.header.geometry = in.header.geometry;
-    out.mesh = deform_mesh(in.mesh, walls, report);
+    try {
+      out.mesh = deform_mesh(in.mesh, walls, report);
+    } catch (const BadInput& e) {
+      // deform_mesh speaks of "walldisp: ..." and "deform: ...": a walldisp that does not fit the
+      // mesh (points away from their nodes, unknown walls, a displacement that would invert
+      // cells). The line names the walldisp file and the mesh it was held against.
+      const std::string what = e.what();
+      for (const std::string prefix : {"walldisp: ", "deform: "}) {
+        if (what.rfind(prefix, 0) == 0)
+          throw BadInput(options.walldisp.string() + ": " + what.substr(prefix.size()) +
+                         " (flow mesh " + options.input.string() + ")");
+      }
+      throw;
+    }
     // The wall layers and their y+ estimate are the input's: deformation keeps the topology.
     out.quality = in.quality;
     set_quality(out.quality, report.quality);
