@@ -3,15 +3,19 @@
 #pragma once
 
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <tuple>
 #include <vector>
 
 #include <Eigen/Dense>
 
+#include "tfmb-beam/run.hpp"
 #include "tfmb/common/h5.hpp"
+#include "tfmb/common/log.hpp"
 #include "tfmb/formats/files.hpp"
 #include "tfmb/formats/schema.hpp"
+#include "tfmb/formats/structure.hpp"
 
 namespace beam_test {
 
@@ -181,6 +185,28 @@ inline fs::path write_lee_frame_model(const fs::path& dir) {
   }
   formats::write_document(doc, file);
   return file;
+}
+
+/// tfmb-beam through the file stage on `model`: the dead point load `point_load` (as
+/// --point-load) by arc length from 10 load steps, written to `output`; returns the load path
+/// it wrote (structure.h5 /path). Throws if the run fails or writes no path.
+inline formats::StructurePath run_arc_length_path(const fs::path& model,
+                                                  const std::string& point_load,
+                                                  const fs::path& output) {
+  beam::Options o;
+  o.model = model;
+  o.point_loads = {point_load};
+  o.dead_loads = true;
+  o.arc_length = true;
+  o.load_steps = 10;
+  o.output = output;
+  const Logger log("tfmb-beam", Verbosity::quiet);
+  if (beam::run(o, log) != 0)
+    throw std::runtime_error("tfmb-beam on " + model.string() + " did not finish");
+  formats::Structure s = formats::read_structure(output);
+  if (!s.path)
+    throw std::runtime_error(output.string() + ": no /path");
+  return *s.path;
 }
 
 }  // namespace beam_test

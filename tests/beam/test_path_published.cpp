@@ -134,19 +134,9 @@ TEST(PublishedPath, LeeFrameFollowsSimoVuQuocFromTenLoadSteps) {
   const double length = 1.2, ei = 100.0;  // as write_lee_frame_model builds it
   const double scaled_limit = 18.532;     // P_limit L^2 / EI, Simo & Vu-Quoc (1986)
   const double final_load = 35.0 * ei / (length * length);  // [N], P L^2 / EI = 35
-  beam::Options o;
-  o.model = write_lee_frame_model(dir);
-  o.point_loads = {"short:end:0,-" + std::to_string(final_load)};
-  o.dead_loads = true;
-  o.arc_length = true;
-  o.load_steps = 10;
-  o.output = dir / "structure.h5";
-  const Logger log("tfmb-beam", Verbosity::quiet);
-  ASSERT_EQ(beam::run(o, log), 0);
-
-  const formats::Structure s = formats::read_structure(o.output);
-  ASSERT_TRUE(s.path.has_value());
-  const formats::StructurePath& p = *s.path;
+  const formats::StructurePath p =
+      run_arc_length_path(write_lee_frame_model(dir), "short:end:0,-" + std::to_string(final_load),
+                          dir / "structure.h5");
   const std::size_t rows = p.load_factor.size();
   ASSERT_EQ(p.node_displacement.size(), rows);
 
@@ -245,19 +235,9 @@ TEST(PublishedPath, ShallowTrussWithSpringSnapsThroughAndBack) {
   for (int i = 0; i <= 200000; ++i)
     limit_load = std::max(limit_load, exact_load(t.rise * i / 200000.0));
   const double final_load = 1.5 * limit_load;
-  beam::Options o;
-  o.model = write_truss_with_spring_model(dir, t);
-  o.point_loads = {"spring:end:0,-" + std::to_string(final_load)};
-  o.dead_loads = true;
-  o.arc_length = true;
-  o.load_steps = 10;
-  o.output = dir / "structure.h5";
-  const Logger log("tfmb-beam", Verbosity::quiet);
-  ASSERT_EQ(beam::run(o, log), 0);
-
-  const formats::Structure s = formats::read_structure(o.output);
-  ASSERT_TRUE(s.path.has_value());
-  const formats::StructurePath& p = *s.path;
+  const formats::StructurePath p =
+      run_arc_length_path(write_truss_with_spring_model(dir, t),
+                          "spring:end:0,-" + std::to_string(final_load), dir / "structure.h5");
   const std::size_t rows = p.load_factor.size();
   ASSERT_EQ(p.node_displacement.size(), rows);
   EXPECT_DOUBLE_EQ(p.load_factor.back(), 1.0);

@@ -505,19 +505,10 @@ TEST(Stage, StaticRunsWriteTheirLoadPath) {
 // displacement it went through.
 TEST(Stage, LeeFrameByArcLengthFromTenLoadSteps) {
   const fs::path dir = scratch("lee-frame");
-  beam::Options o;
-  o.model = write_lee_frame_model(dir);
   const double limit = 18.532 * 100.0 / (1.2 * 1.2);
-  o.point_loads = {"short:end:0,-" + std::to_string(20000.0 / 18532.0 * limit)};
-  o.dead_loads = true;
-  o.arc_length = true;
-  o.load_steps = 10;
-  o.output = dir / "structure.h5";
-  const Logger log("tfmb-beam", Verbosity::quiet);
-  ASSERT_EQ(beam::run(o, log), 0);
-  const formats::Structure s = formats::read_structure(o.output);
-  ASSERT_TRUE(s.path.has_value());
-  const formats::StructurePath& p = *s.path;
+  const formats::StructurePath p = run_arc_length_path(
+      write_lee_frame_model(dir), "short:end:0,-" + std::to_string(20000.0 / 18532.0 * limit),
+      dir / "structure.h5");
   EXPECT_DOUBLE_EQ(p.load_factor.back(), 1.0);
   EXPECT_EQ(p.limit_points_load.size(), 2u);
   EXPECT_EQ(p.limit_points_displacement.size(), 2u);
