@@ -107,7 +107,9 @@ SLOW_SECONDS=600 setsid make -f "$src/Makefile.cases" --no-print-directory \
   CASE=config1 SMOKE=1 RUN="$run" BIN="$bin" INPUT="$scratch/slow-input" model > "$scratch/a.log" 2>&1 & a=$!
 disown $a
 wait_held
-for _ in $(seq 50); do pgrep -g $a -f workflows/stage > /dev/null && break; sleep 0.1; done
+# (the make starts the stage just after it takes the lock; on a loaded machine that can take seconds)
+for _ in $(seq 600); do pgrep -g $a -f workflows/stage > /dev/null && break; sleep 0.1; done
+pgrep -g $a -f workflows/stage > /dev/null || { kill -9 -- -$a; fail "4: the run's stage never started (60 s)"; }
 makes=$(pgrep -g $a -x make) || fail "4: no make in the run"
 kill -9 $makes
 for _ in $(seq 50); do pgrep -g $a -x make > /dev/null || break; sleep 0.1; done
