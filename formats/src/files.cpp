@@ -3,6 +3,9 @@
 #include <cstdlib>
 #include <ctime>
 #include <functional>
+#include <sstream>
+#include <unordered_map>
+#include <unordered_set>
 
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/hash.hpp"
@@ -93,6 +96,106 @@ void write_mesh(h5::Writer& file, const Mesh& mesh) {
   }
 }
 
+namespace {
+
+std::uint64_t edge_key(std::int64_t from, std::int64_t to) {
+  return (static_cast<std::uint64_t>(from) << 32) ^ static_cast<std::uint64_t>(to);
+}
+
+// Every cell's nodes distinct and counter-clockwise, its area positive (the specs' cell tables
+// say so). A repeated node or a clockwise cell (two nodes swapped) passed the index checks and
+// changed the flow silently: the median-dual areas take the magnitude of a signed area, the
+// heat FE Jacobians its sign.
+void check_cells(const h5::Reader& file, const h5::MatrixXiR& cells, const h5::MatrixXdR& points,
+                 const std::string& path) {
+  const Eigen::Index k = cells.cols();
+  for (Eigen::Index c = 0; c < cells.rows(); ++c) {
+    double twice_area = 0.0;
+    for (Eigen::Index i = 0; i < k; ++i) {
+      const std::int64_t a = cells(c, i);
+      const std::int64_t b = cells(c, (i + 1) % k);
+      for (Eigen::Index j = i + 1; j < k; ++j) {
+        if (cells(c, j) == a)
+          file.fail(path, "cell row " + std::to_string(c) + " repeats node " + std::to_string(a) +
+                              " (a degenerate cell)");
+      }
+      twice_area += points(a, 0) * points(b, 1) - points(b, 0) * points(a, 1);
+    }
+    if (!(twice_area > 0.0)) {
+      std::ostringstream what;
+      what << "cell row " << c << " is " << (twice_area < 0.0 ? "clockwise" : "collapsed")
+           << " (signed area " << 0.5 * twice_area << " m^2); cells are counter-clockwise";
+      file.fail(path, what.str());
+    }
+  }
+}
+
+// The directed edges of the cells (each cell's nodes in their counter-clockwise order), each
+// with the number of cells it belongs to as an undirected edge.
+struct CellEdges {
+  std::unordered_set<std::uint64_t> directed;
+  std::unordered_map<std::uint64_t, int> undirected;
+};
+
+CellEdges cell_edges(const Mesh& mesh) {
+  CellEdges edges;
+  auto add = [&](const h5::MatrixXiR& cells) {
+    const Eigen::Index k = cells.cols();
+    for (Eigen::Index c = 0; c < cells.rows(); ++c) {
+      for (Eigen::Index i = 0; i < k; ++i) {
+        const std::int64_t a = cells(c, i);
+        const std::int64_t b = cells(c, (i + 1) % k);
+        edges.directed.insert(edge_key(a, b));
+        ++edges.undirected[edge_key(std::min(a, b), std::max(a, b))];
+      }
+    }
+  };
+  add(mesh.triangles);
+  add(mesh.quads);
+  return edges;
+}
+
+std::string edge_text(const h5::MatrixXiR& edges, Eigen::Index row) {
+  return "edge row " + std::to_string(row) + " (" + std::to_string(edges(row, 0)) + ", " +
+         std::to_string(edges(row, 1)) + ")";
+}
+
+}  // namespace
+
+void check_boundaries(const h5::Reader& file, const Mesh& mesh, EdgeOrder order) {
+  const CellEdges edges = cell_edges(mesh);
+  std::unordered_set<std::uint64_t> named;
+  for (const auto& [name, boundary] : mesh.boundaries) {
+    const std::string path = "/mesh/boundaries/" + name + "/edges";
+    for (Eigen::Index e = 0; e < boundary.edges.rows(); ++e) {
+      const std::int64_t a = boundary.edges(e, 0);
+      const std::int64_t b = boundary.edges(e, 1);
+      if (order == EdgeOrder::domain_on_left && !edges.directed.count(edge_key(a, b)))
+        file.fail(path, edge_text(boundary.edges, e) +
+                            " does not run with the domain on its left (as the counter-clockwise "
+                            "cell beside it gives it)");
+      if (order == EdgeOrder::one_chain && e > 0 && boundary.edges(e - 1, 1) != a)
+        file.fail(path, edge_text(boundary.edges, e) + " does not start where edge row " +
+                            std::to_string(e - 1) + " ends (edges run head to tail)");
+      const auto key = edge_key(std::min(a, b), std::max(a, b));
+      if (const auto it = edges.undirected.find(key);
+          it == edges.undirected.end() || it->second != 1)
+        file.fail(path,
+                  edge_text(boundary.edges, e) + " is an inner edge, not on the mesh's boundary");
+      if (!named.insert(key).second)
+        file.fail(path, edge_text(boundary.edges, e) + " is in a boundary already");
+    }
+  }
+  for (const auto& [key, count] : edges.undirected) {
+    if (count == 1 && !named.count(key)) {
+      file.fail("/mesh/boundaries", "the mesh's boundary edge (" + std::to_string(key >> 32) +
+                                        ", " + std::to_string(key & 0xffffffffu) +
+                                        ") is in no boundary; every boundary edge needs one (its "
+                                        "condition comes from the boundary's kind)");
+    }
+  }
+}
+
 Mesh read_mesh(const h5::Reader& file) {
   Mesh mesh;
   mesh.points = file.read_matrix("/mesh/points", {}, 2);
@@ -117,6 +220,20 @@ Mesh read_mesh(const h5::Reader& file) {
     if (file.has_attr(group, "flap")) boundary.flap = file.attr_string(group, "flap");
     if (file.has_attr(group, "side")) boundary.side = file.attr_string(group, "side");
     mesh.boundaries[name] = std::move(boundary);
+  }
+  check_cells(file, mesh.triangles, mesh.points, "/mesh/cells/triangle");
+  check_cells(file, mesh.quads, mesh.points, "/mesh/cells/quad");
+  // A boundary's edges are edges of cells with distinct nodes: a repeated node or an edge
+  // between two nodes no cell joins (an index changed in place) was taken as a wall piece.
+  const CellEdges edges = cell_edges(mesh);
+  for (const auto& [name, boundary] : mesh.boundaries) {
+    for (Eigen::Index e = 0; e < boundary.edges.rows(); ++e) {
+      const std::int64_t a = boundary.edges(e, 0);
+      const std::int64_t b = boundary.edges(e, 1);
+      if (!edges.undirected.count(edge_key(std::min(a, b), std::max(a, b))))
+        file.fail("/mesh/boundaries/" + name + "/edges",
+                  edge_text(boundary.edges, e) + " is not an edge of a cell");
+    }
   }
   return mesh;
 }

@@ -55,6 +55,7 @@ FlowMesh read_flowmesh(const std::filesystem::path& file) {
     r.fail("/mesh/cells", "no cells");
   if (out.mesh.boundaries.empty())
     r.fail("/mesh/boundaries", "no boundaries");
+  check_boundaries(r, out.mesh, EdgeOrder::domain_on_left);
   MeshQualityReport& q = out.quality;
   q.min_angle = read_optional(r, "min_angle");
   q.max_aspect_ratio = read_optional(r, "max_aspect_ratio");

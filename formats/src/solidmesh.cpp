@@ -34,6 +34,7 @@ SolidMesh read_solidmesh(const std::filesystem::path& file) {
   solid.source = file;
   solid.header = read_header(r);
   solid.mesh = read_mesh(r);
+  check_boundaries(r, solid.mesh, EdgeOrder::one_chain);
   const std::size_t cells = solid.mesh.cell_count();
   solid.flap_names = r.read_strings("/link/flap_names");
   if (solid.flap_names.empty())

@@ -186,6 +186,19 @@ TEST(TypedIo, ASolidMeshWithoutThicknessIsRefused) {
   solid.cell_flap = {0};
   solid.cell_element = {0};
   solid.point_thickness_coordinate = {-0.005, -0.005, 0.005, 0.005};
+  auto face = [](const char* kind, const char* side, std::int64_t a, std::int64_t b) {
+    formats::Boundary boundary;
+    boundary.kind = kind;
+    boundary.flap = "upper";
+    boundary.side = side;
+    boundary.edges.resize(1, 2);
+    boundary.edges << a, b;
+    return boundary;
+  };
+  solid.mesh.boundaries["upper_inner"] = face("solid_inner", "inner", 0, 1);
+  solid.mesh.boundaries["upper_outer"] = face("solid_outer", "outer", 3, 2);
+  solid.mesh.boundaries["upper_start"] = face("solid_end", "end", 0, 3);
+  solid.mesh.boundaries["upper_end"] = face("solid_end", "end", 1, 2);
   const fs::path file = scratch("solidmesh.h5");
   formats::write_solidmesh(file, solid, {});
   EXPECT_EQ(formats::read_solidmesh(file).point_thickness_coordinate[2], 0.005);
@@ -210,6 +223,11 @@ TEST(TypedIo, FlowMeshRoundTripAndAMeshWithoutBoundariesIsRefused) {
   wall.edges.resize(1, 2);
   wall.edges << 2, 3;
   mesh.mesh.boundaries["upper_inner"] = wall;
+  formats::Boundary farfield;
+  farfield.kind = "farfield";
+  farfield.edges.resize(3, 2);
+  farfield.edges << 3, 0, 0, 1, 1, 2;
+  mesh.mesh.boundaries["farfield"] = farfield;
   mesh.quality.min_angle = 90.0;
   mesh.quality.boundary_layers = 3;
   const fs::path file = scratch("flowmesh.h5");
@@ -224,6 +242,116 @@ TEST(TypedIo, FlowMeshRoundTripAndAMeshWithoutBoundariesIsRefused) {
   mesh.mesh.boundaries.clear();
   formats::write_flowmesh(file, mesh, {});
   EXPECT_THROW(formats::read_flowmesh(file), BadInput);
+}
+
+// The mesh block's topology (formats/README.md, mesh block; flowmesh.md): a degenerate or
+// clockwise cell, a boundary edge that is no cell edge, turned round, inside the mesh or missing
+// are refused in one line naming the file and the dataset. Before, tfmb-flow took a turned edge
+// and a gap in the boundaries silently (its results changed) and a non-cell edge as exit 4
+// (issue 23's mutation suite, tests/formats/mutation_suite.py).
+TEST(TypedIo, FlowMeshTopologyIsChecked) {
+  formats::FlowMesh good;
+  good.header.creator = "test";
+  good.mesh.points.resize(6, 2);
+  good.mesh.points << 0.0, 0.0, 1.0, 0.0, 2.0, 0.0, 0.0, 1.0, 1.0, 1.0, 2.0, 1.0;
+  good.mesh.quads.resize(2, 4);
+  good.mesh.quads << 0, 1, 4, 3, 1, 2, 5, 4;
+  formats::Boundary wall;
+  wall.kind = "wall";
+  wall.edges.resize(2, 2);
+  wall.edges << 0, 1, 1, 2;
+  good.mesh.boundaries["wall"] = wall;
+  formats::Boundary farfield;
+  farfield.kind = "farfield";
+  farfield.edges.resize(4, 2);
+  farfield.edges << 2, 5, 5, 4, 4, 3, 3, 0;
+  good.mesh.boundaries["farfield"] = farfield;
+  const fs::path file = scratch("topology.h5");
+  formats::write_flowmesh(file, good, {});
+  EXPECT_NO_THROW(formats::read_flowmesh(file));
+
+  auto refused = [&](const char* label, const formats::FlowMesh& bad, const std::string& located) {
+    formats::write_flowmesh(file, bad, {});
+    try {
+      formats::read_flowmesh(file);
+      ADD_FAILURE() << label << ": accepted";
+    } catch (const BadInput& e) {
+      const std::string message = e.what();
+      EXPECT_EQ(message.rfind(file.string() + ": " + located, 0), 0u) << label << ": " << message;
+      EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
+  };
+  formats::FlowMesh bad = good;
+  bad.mesh.quads.row(1) << 1, 2, 5, 5;
+  refused("degenerate cell", bad, "/mesh/cells/quad: cell row 1 repeats node 5");
+  bad = good;
+  bad.mesh.quads.row(0) << 0, 3, 4, 1;
+  refused("clockwise cell", bad, "/mesh/cells/quad: cell row 0 is clockwise");
+  bad = good;
+  bad.mesh.boundaries["wall"].edges.row(1) << 2, 1;
+  refused(
+      "edge turned round", bad,
+      "/mesh/boundaries/wall/edges: edge row 1 (2, 1) does not run with the domain on its left");
+  bad = good;
+  bad.mesh.boundaries["wall"].edges.row(1) << 1, 5;
+  refused("no cell edge", bad,
+          "/mesh/boundaries/wall/edges: edge row 1 (1, 5) is not an edge of a cell");
+  bad = good;
+  bad.mesh.boundaries["wall"].edges.resize(1, 2);
+  bad.mesh.boundaries["wall"].edges << 0, 1;
+  refused("gap", bad, "/mesh/boundaries: the mesh's boundary edge (1, 2) is in no boundary");
+  bad = good;
+  bad.mesh.boundaries["farfield"].edges.row(0) << 1, 4;
+  refused("inner edge", bad, "/mesh/boundaries/farfield/edges: edge row 0 (1, 4) is an inner edge");
+  bad = good;
+  bad.mesh.boundaries["farfield"].edges.row(0) << 0, 1;
+  refused("edge twice", bad, "/mesh/boundaries/");
+}
+
+// A solid mesh's boundary is one head-to-tail chain (solidmesh.md): a row turned round in
+// tfmb-heat's inner wall changed the temperatures silently.
+TEST(TypedIo, SolidMeshBoundaryChainsAreChecked) {
+  formats::SolidMesh solid;
+  solid.header.creator = "test";
+  solid.mesh.points.resize(6, 2);
+  solid.mesh.points << 0.0, -0.005, 1.0, -0.005, 2.0, -0.005, 0.0, 0.005, 1.0, 0.005, 2.0, 0.005;
+  solid.mesh.quads.resize(2, 4);
+  solid.mesh.quads << 0, 1, 4, 3, 1, 2, 5, 4;
+  solid.flap_names = {"upper"};
+  solid.cell_flap = {0, 0};
+  solid.cell_element = {0, 1};
+  solid.point_thickness_coordinate = {-0.005, -0.005, -0.005, 0.005, 0.005, 0.005};
+  auto face = [](const char* kind, const char* side, std::vector<std::int64_t> nodes) {
+    formats::Boundary boundary;
+    boundary.kind = kind;
+    boundary.flap = "upper";
+    boundary.side = side;
+    boundary.edges =
+        h5::MatrixXiR::Map(nodes.data(), static_cast<Eigen::Index>(nodes.size() / 2), 2);
+    return boundary;
+  };
+  solid.mesh.boundaries["upper_inner"] = face("solid_inner", "inner", {0, 1, 1, 2});
+  solid.mesh.boundaries["upper_outer"] = face("solid_outer", "outer", {3, 4, 4, 5});
+  solid.mesh.boundaries["upper_start"] = face("solid_end", "end", {0, 3});
+  solid.mesh.boundaries["upper_end"] = face("solid_end", "end", {2, 5});
+  const fs::path file = scratch("solid-chain.h5");
+  formats::write_solidmesh(file, solid, {});
+  EXPECT_NO_THROW(formats::read_solidmesh(file));
+  solid.mesh.boundaries["upper_inner"] = face("solid_inner", "inner", {0, 1, 2, 1});
+  formats::write_solidmesh(file, solid, {});
+  try {
+    formats::read_solidmesh(file);
+    ADD_FAILURE() << "a turned edge was accepted";
+  } catch (const BadInput& e) {
+    EXPECT_NE(std::string(e.what()).find(file.string() +
+                                         ": /mesh/boundaries/upper_inner/edges: "
+                                         "edge row 1 (2, 1) does not start where edge row 0 ends"),
+              std::string::npos)
+        << e.what();
+  }
+  solid.mesh.boundaries["upper_inner"] = face("solid_inner", "inner", {0, 1});
+  formats::write_solidmesh(file, solid, {});
+  EXPECT_THROW(formats::read_solidmesh(file), BadInput);
 }
 
 // What tfmb-strain writes reads back column by column; a worst flap that names no flap of the

@@ -70,8 +70,18 @@ struct Mesh {
 
 // Writes /mesh (and the derived XDMF topology stream).
 void write_mesh(h5::Writer& file, const Mesh& mesh);
-// Reads /mesh of a file already validated against its schema.
+// Reads /mesh of a file already validated against its schema; refuses (BadInput, located) a cell
+// with a repeated node, a clockwise or collapsed cell and a boundary edge that is no cell edge.
 Mesh read_mesh(const h5::Reader& file);
+// How a mesh kind orders its boundary edges: a flow domain's run with the domain on their left
+// (flowmesh.md; a boundary may be several chains), a solid mesh's each as one head-to-tail chain
+// (solidmesh.md: inner and outer from the flap's start to its end).
+enum class EdgeOrder { domain_on_left, one_chain };
+// The rules of a mesh's named boundaries: every boundary edge is ordered as `order` says, lies
+// on the mesh's boundary (one cell) and is in one boundary only, and every boundary edge of the
+// mesh is in a boundary (a missing edge left a gap the solvers took as a wall without
+// condition). BadInput, located, otherwise.
+void check_boundaries(const h5::Reader& file, const Mesh& mesh, EdgeOrder order);
 
 // Writes "<file minus .h5>.xdmf" next to a committed file that has something to draw, for
 // ParaView (formats/README.md, "XDMF sidecars"): a Uniform grid with Mixed topology for a /mesh
