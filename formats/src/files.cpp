@@ -333,6 +333,9 @@ Document example_document(const Schema& schema) {
   Document document;
   document.groups.insert("/");
   std::map<std::string, std::size_t> symbols;
+  // A mesh-bearing example holds a real mesh (below): a 3 x 2 grid of nodes, one quad and two
+  // triangles, so that it meets the topology rules read_mesh and check_boundaries apply.
+  if (schema.mesh_bearing) symbols = {{"N", 6}, {"Nt", 2}, {"Nq", 1}};
   auto extent = [&](const std::string& expression) -> std::size_t {
     if (expression == "*") return 3;
     std::size_t total = 0;
@@ -409,11 +412,26 @@ Document example_document(const Schema& schema) {
   for (const auto& [path, value] : document.datasets) add_parents(path);
   for (const auto& group : document.groups) add_parents(group);
   document.groups.insert(parents.begin(), parents.end());
-  // A mesh-bearing example gets a consistent XDMF topology stream.
+  // A mesh-bearing example gets the grid above, counter-clockwise cells, one boundary running
+  // round it with the domain on its left, and a consistent XDMF topology stream.
   if (schema.mesh_bearing) {
+    //  3 --- 4 --- 5
+    //  |  q  | t1 /|
+    //  |     |  / t0
+    //  0 --- 1 --- 2
+    auto& points = document.datasets["/mesh/points"];
+    points.floats = {0.0, 0.0, 0.1, 0.0, 0.2, 0.0, 0.0, 0.1, 0.1, 0.1, 0.2, 0.1};
+    auto& tri = document.datasets["/mesh/cells/triangle"];
+    tri.integers = {1, 2, 5, 1, 5, 4};
+    auto& quad = document.datasets["/mesh/cells/quad"];
+    quad.integers = {0, 1, 4, 3};
+    for (auto& [path, value] : document.datasets) {
+      if (path.starts_with("/mesh/boundaries/") && path.ends_with("/edges")) {
+        value.integers = {0, 1, 1, 2, 2, 5, 5, 4, 4, 3, 3, 0};
+        value.shape = {6, 2};
+      }
+    }
     Mesh mesh;
-    const auto& tri = document.datasets["/mesh/cells/triangle"];
-    const auto& quad = document.datasets["/mesh/cells/quad"];
     mesh.triangles = Eigen::Map<const h5::MatrixXiR>(tri.integers.data(), static_cast<Eigen::Index>(tri.shape[0]), 3);
     mesh.quads = Eigen::Map<const h5::MatrixXiR>(quad.integers.data(), static_cast<Eigen::Index>(quad.shape[0]), 4);
     auto& topology = document.datasets["/mesh/topology_xdmf_mixed"];

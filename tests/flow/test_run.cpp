@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <set>
 #include <sstream>
 
 #include "nparc_case.hpp"
@@ -43,15 +44,28 @@ void write_flowmesh(const std::filesystem::path& file, const flow::Mesh& m,
   }
   const std::map<std::string, std::string> kinds = {
       {"symmetry", "symmetry"}, {"outlet", "outflow"}, {"wall", "wall"}, {"inlet", "inflow"}};
+  // The flowmesh spec has each boundary's edges with the domain on their left, as the
+  // counter-clockwise cell beside an edge runs it; structured_mesh runs its top and left
+  // boundaries the other way, so those are turned round (their order reversed too).
+  std::set<std::pair<int, int>> cell_edges;
+  auto add_cell = [&](const auto& cell) {
+    for (std::size_t k = 0; k < cell.size(); ++k)
+      cell_edges.insert({cell[k], cell[(k + 1) % cell.size()]});
+  };
+  for (const auto& t : m.triangles) add_cell(t);
+  for (const auto& q : m.quads) add_cell(q);
   for (const auto& b : m.boundaries) {
     if (drop_outlet && b.name == "outlet")
       continue;
     formats::Boundary fb;
     fb.kind = kinds.at(b.name);
-    fb.edges.resize(static_cast<Eigen::Index>(b.edges.size()), 2);
-    for (std::size_t e = 0; e < b.edges.size(); ++e) {
-      fb.edges(static_cast<Eigen::Index>(e), 0) = b.edges[e][0];
-      fb.edges(static_cast<Eigen::Index>(e), 1) = b.edges[e][1];
+    const std::size_t n = b.edges.size();
+    const bool turn = n > 0 && !cell_edges.count({b.edges[0][0], b.edges[0][1]});
+    fb.edges.resize(static_cast<Eigen::Index>(n), 2);
+    for (std::size_t e = 0; e < n; ++e) {
+      const auto& edge = turn ? b.edges[n - 1 - e] : b.edges[e];
+      fb.edges(static_cast<Eigen::Index>(e), 0) = turn ? edge[1] : edge[0];
+      fb.edges(static_cast<Eigen::Index>(e), 1) = turn ? edge[0] : edge[1];
     }
     fm.boundaries[b.name] = fb;
   }
@@ -98,8 +112,9 @@ TEST(FlowRun, NozzleEndToEndAndRestart) {
   const auto p = f.read_vector("/fields/point/pressure", 61 * 16);
   const auto wall_x = f.read_vector("/walls/wall/x");
   EXPECT_EQ(wall_x.size(), 61u);
+  // ordered along the boundary's edges: the upper wall runs with the domain on its left, in -x
   for (std::size_t k = 1; k < wall_x.size(); ++k)
-    EXPECT_GT(wall_x[k], wall_x[k - 1]);  // ordered
+    EXPECT_LT(wall_x[k], wall_x[k - 1]);
   EXPECT_TRUE(std::filesystem::exists(dir / "flow.xdmf"));
 
   // restart from the converged file: nothing left to do, same solution

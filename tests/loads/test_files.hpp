@@ -245,8 +245,11 @@ inline void write_flow(const std::filesystem::path& file, const std::vector<Test
     for (std::size_t i = 0; i < n; ++i) nodes[t.name].push_back(base + static_cast<std::int64_t>(i));
     for (std::size_t i = 0; i + 1 < n; ++i) {
       const auto k = static_cast<std::int64_t>(i);
-      quads.push_back({base + k, base + k + 1, base + static_cast<std::int64_t>(n) + k + 1,
-                       base + static_cast<std::int64_t>(n) + k});
+      const auto off = base + static_cast<std::int64_t>(n) + k;  // offset node of point k
+      // counter-clockwise, as the flowmesh spec has cells: the offset row is on the trace's
+      // left for fluid_side +1 and on its right for -1
+      if (t.fluid_side > 0) quads.push_back({base + k, base + k + 1, off + 1, off});
+      else quads.push_back({base + k, off, off + 1, base + k + 1});
     }
   }
   const auto N = static_cast<Eigen::Index>(points.size());
@@ -254,7 +257,9 @@ inline void write_flow(const std::filesystem::path& file, const std::vector<Test
   write_root(w, "flow");
   w.write("/mesh/points", matrix(points), "m");
   h5::MatrixXiR tri(1, 3);
-  tri << 0, 1, static_cast<std::int64_t>(traces.front().points.size());
+  const auto first_offset = static_cast<std::int64_t>(traces.front().points.size());
+  if (traces.front().fluid_side > 0) tri << 0, 1, first_offset;
+  else tri << 0, first_offset, 1;
   w.write("/mesh/cells/triangle", tri);
   h5::MatrixXiR q(static_cast<Eigen::Index>(quads.size()), 4);
   for (std::size_t c = 0; c < quads.size(); ++c) {
