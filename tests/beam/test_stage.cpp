@@ -459,6 +459,20 @@ TEST(Stage, NodalMomentsAndPointLoads) {
   EXPECT_NEAR(-u(tip, 1), exact, 1e-5 * std::abs(exact));
   o.point_loads = {"sample:middle:0,1"};
   EXPECT_THROW(beam::run(o, log), UsageError);
+  // A loads file without a group for one of the model's flaps is refused (it was taken as that
+  // flap unloaded, silently).
+  o.point_loads.clear();
+  copy_prefix(doc, "/flaps/sample", "/flaps/other");
+  erase_prefix(doc, "/flaps/sample");
+  formats::write_document(doc, o.loads);
+  try {
+    beam::run(o, log);
+    ADD_FAILURE() << "a loads file without the model's flap was taken";
+  } catch (const BadInput& e) {
+    EXPECT_NE(std::string(e.what()).find("loads.h5: /flaps: no group for the model's flap 'sample'"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 // Every static run writes its load path to structure.h5 (/path, formats/structure.md 1.3): the

@@ -247,6 +247,16 @@ FileModel read_model(const Options& options) {
   // projection for plotting and are not read.
   if (!options.loads.empty()) {
     const formats::Loads loads = formats::read_loads(options.loads);
+    // Every flap of the model has its group (zeros where it is unloaded): a missing one would
+    // be taken as unloaded, silently (found by the mutation suite: a group removed ran to exit 0
+    // with another result).
+    for (const auto& [name, elements] : fm.flap_elements) {
+      const bool present = std::any_of(loads.flaps.begin(), loads.flaps.end(),
+                                       [&](const formats::LoadsFlap& f) { return f.name == name; });
+      if (!present)
+        loads.fail("/flaps", "no group for the model's flap '" + name +
+                                 "' (a loads file has every flap, with zeros where one is unloaded)");
+    }
     for (const formats::LoadsFlap& flap : loads.flaps) {
       const std::string g = "/flaps/" + flap.name;
       if (!fm.flap_elements.count(flap.name))
