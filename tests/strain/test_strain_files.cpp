@@ -30,7 +30,8 @@ std::vector<std::string> problems(const std::filesystem::path& file, const std::
 }
 
 // materials.h5 of one flap with uniform properties and the given free thermal strains.
-void write_materials(const std::filesystem::path& file, double thermal_inner, double thermal_outer, int outer_sign = 1) {
+void write_materials(const std::filesystem::path& file, double thermal_inner, double thermal_outer, int outer_sign = 1,
+                     double thickness_attribute = kThickness) {
   formats::Document doc = tf::example_with("materials", "/flaps", {"upper"});
   const std::string g = "/flaps/upper";
   const std::size_t n = kElements;
@@ -64,7 +65,7 @@ void write_materials(const std::filesystem::path& file, double thermal_inner, do
   clamped.shape = {n};
   clamped.integers.assign(n, 0);
   doc.datasets[g + "/clamped"] = clamped;
-  tf::set_attr(doc, g, "thickness", kThickness);
+  tf::set_attr(doc, g, "thickness", thickness_attribute);
   tf::set_attr(doc, g, "width", kWidth);
   tf::set_attr(doc, g, "outer_normal_sign", static_cast<double>(outer_sign));
   formats::write_document(doc, file);
@@ -209,4 +210,25 @@ TEST(StrainFiles, MismatchedStructureAndMaterialsExit3) {
   write_structure(f.structure, {1e-4}, {0.0}, {0.0}, {0.0}, kElements, "lower");
   EXPECT_EQ(WEXITSTATUS(std::system(cli.c_str())), 3);
   EXPECT_FALSE(std::filesystem::exists(f.output));
+}
+
+// The surfaces sit at +-thickness/2 of a section whose EA and EI are the rectangle's: a thickness
+// that is not sqrt(12 EI / EA) (the mutation suite's 1e300 m turned a failing margin into a
+// passing one) is refused with exit 3, naming the attribute.
+TEST(StrainFiles, ThicknessThatIsNotTheSectionsIsRefused) {
+  const Files f("thickness");
+  write_structure(f.structure, {1e-4}, {0.0}, {0.0}, {0.0});
+  write_materials(f.materials, 0.0, 0.0, 1, kThickness);
+  EXPECT_NO_THROW(f.run(MechanicalBasis::mechanical));
+  for (const double wrong : {1.01 * kThickness, 1e300}) {
+    write_materials(f.materials, 0.0, 0.0, 1, wrong);
+    try {
+      f.run(MechanicalBasis::mechanical);
+      ADD_FAILURE() << "thickness " << wrong << " m taken";
+    } catch (const BadInput& e) {
+      EXPECT_NE(std::string(e.what()).find("/flaps/upper@thickness: "), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("that of a 0.004 m thick rectangle"), std::string::npos)
+          << e.what();
+    }
+  }
 }

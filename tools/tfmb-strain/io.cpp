@@ -1,5 +1,6 @@
 #include "io.hpp"
 
+#include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <limits>
@@ -60,9 +61,22 @@ std::map<std::string, MaterialsFlap> read_materials(const std::filesystem::path&
     f.thermal_strain_outer = e.thermal_strain_outer;
     f.thermal_strain = e.thermal_strain;
     f.thermal_curvature = e.thermal_curvature;
-    for (const auto& k : e.section_stiffness) {
-      f.axial_stiffness.push_back(k(0, 0));
-      f.bending_stiffness.push_back(k(5, 5));
+    for (std::size_t k = 0; k < e.section_stiffness.size(); ++k) {
+      const auto& stiffness = e.section_stiffness[k];
+      f.axial_stiffness.push_back(stiffness(0, 0));
+      f.bending_stiffness.push_back(stiffness(5, 5));
+      // The surface strains put the surfaces at +-thickness/2 of a section whose EA and EI are
+      // those of the rectangle thickness x width (formats/materials.md): the rectangle's own
+      // thickness, sqrt(12 EI / EA), is the thickness. A thickness that is not (found by the
+      // mutation suite: 1e300 m turned a failing margin into a passing one) is refused.
+      const double section_thickness = std::sqrt(12.0 * stiffness(5, 5) / stiffness(0, 0));
+      if (!(std::abs(section_thickness - in.thickness) <= 1e-6 * section_thickness)) {
+        std::ostringstream what;
+        what << file.string() << ": /flaps/" << in.name << "@thickness: " << in.thickness
+             << " m, but the section stiffness of element " << k << " is that of a "
+             << section_thickness << " m thick rectangle (sqrt(12 EI / EA))";
+        throw BadInput(what.str());
+      }
     }
     f.clamped = e.clamped;
     out[in.name] = std::move(f);
