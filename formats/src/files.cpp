@@ -438,6 +438,17 @@ Document example_document(const Schema& schema) {
     topology.integers = xdmf_mixed_topology(mesh);
     topology.shape = {topology.integers.size()};
   }
+  // A loads example's beam nodes lie on a straight line at their arc lengths, as the loads
+  // reader requires of s and position.
+  if (schema.kind == "loads") {
+    for (auto& [path, value] : document.datasets) {
+      if (!path.ends_with("/position")) continue;
+      const auto s = document.datasets.find(path.substr(0, path.size() - 9) + "/s");
+      if (s == document.datasets.end()) continue;
+      value.floats.assign(2 * s->second.floats.size(), 0.0);
+      for (std::size_t i = 0; i < s->second.floats.size(); ++i) value.floats[2 * i] = s->second.floats[i];
+    }
+  }
   return document;
 }
 

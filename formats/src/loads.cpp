@@ -1,6 +1,8 @@
 // The loads kind's one reader and writer: formats/loads.md (schema in schema_loads.cpp).
 #include "tfmb/formats/loads.hpp"
 
+#include <cmath>
+#include <numbers>
 #include <sstream>
 
 #include "rows.hpp"
@@ -80,8 +82,24 @@ Loads read_loads(const std::filesystem::path& file) {
     for (std::size_t i = 1; i < n; ++i)
       if (!(f.s[i] >= f.s[i - 1]))
         r.fail(g + "/s", "arc length decreases at node " + std::to_string(i));
-    if (r.exists(g + "/position"))
+    if (r.exists(g + "/position")) {
       f.position = detail::read_rows<2>(r, g + "/position", n);
+      // s is the arc length of the reference line through the nodes: between two nodes it is
+      // at least their distance and at most pi/2 times it (a circular arc of up to a half
+      // turn; no flap turns that far between two beam nodes). Found by the mutation suite: an
+      // arc length of 1e300 m changed workflows/nodal-forces' lumping without a word.
+      for (std::size_t i = 1; i < n; ++i) {
+        const double arc = f.s[i] - f.s[i - 1];
+        const double chord = (f.position[i] - f.position[i - 1]).norm();
+        if (!(arc >= chord * (1.0 - 1e-9) - 1e-12 &&
+              arc <= 0.5 * std::numbers::pi * chord * (1.0 + 1e-9) + 1e-12)) {
+          std::ostringstream what;
+          what << "node " << i << ": an arc length step of " << arc << " m between nodes "
+               << chord << " m apart (/position); it lies between 1 and pi/2 times that";
+          r.fail(g + "/s", what.str());
+        }
+      }
+    }
     f.distributed_force = detail::read_rows<3>(r, g + "/distributed_force", n);
     f.distributed_moment = detail::read_rows<3>(r, g + "/distributed_moment", n);
     f.nodal_force = detail::read_rows<3>(r, g + "/nodal_force", n);

@@ -1,10 +1,11 @@
 // The typed readers and writers of formats/: what a writer writes its reader reads back, and the
 // checks the schema cannot make are made (one located line per problem).
 #include <gtest/gtest.h>
-
 #include <hdf5.h>
 
+#include <cmath>
 #include <filesystem>
+#include <numbers>
 
 #include "tfmb/common/errors.hpp"
 #include "tfmb/formats/flowmesh.hpp"
@@ -124,6 +125,46 @@ TEST(TypedIo, LoadsRoundTripAndAReversedArcLengthIsRefused) {
         }
       },
       BadInput);
+}
+
+// With positions, an arc-length step lies between the nodes' distance and pi/2 times it (an arc
+// of up to a half turn): the mutation suite's 1e300 m arc length changed nodal-forces' lumping.
+TEST(TypedIo, LoadsArcLengthMustFitThePositions) {
+  formats::Loads loads;
+  loads.header.creator = "test";
+  loads.method = "conservative";
+  loads.load_basis = "flap width";
+  formats::LoadsFlap f;
+  f.name = "lower";
+  f.width = 1.0;
+  f.traces = {"lower_inner"};
+  // a quarter circle of radius 0.1 m in two steps: arc 0.0785 m per chord 0.0765 m
+  const double r = 0.1, step = 0.25 * std::numbers::pi;
+  for (int i = 0; i < 3; ++i) {
+    f.s.push_back(r * step * i);
+    f.position.emplace_back(r * std::cos(step * i), r * std::sin(step * i));
+    f.distributed_force.emplace_back(0.0, 0.0, 0.0);
+    f.distributed_moment.emplace_back(0.0, 0.0, 0.0);
+    f.nodal_force.emplace_back(0.0, 0.0, 0.0);
+    f.nodal_moment.emplace_back(0.0, 0.0, 0.0);
+  }
+  f.total_force = f.mapped_force = f.total_moment = f.mapped_moment = Eigen::Vector3d::Zero();
+  loads.flaps = {f};
+  const fs::path file = scratch("loads_arc.h5");
+  formats::write_loads(file, loads, {});
+  EXPECT_EQ(formats::read_loads(file).flaps[0].s[2], f.s[2]);
+  for (const double last_step : {0.05, 1e300}) {  // shorter than the chord; absurdly long
+    loads.flaps[0].s[2] = f.s[1] + last_step;
+    formats::write_loads(file, loads, {});
+    try {
+      formats::read_loads(file);
+      ADD_FAILURE() << "arc length step to " << loads.flaps[0].s[2] << " m taken";
+    } catch (const BadInput& e) {
+      EXPECT_NE(std::string(e.what()).find("/flaps/lower/s: node 2: an arc length step of"),
+                std::string::npos)
+          << e.what();
+    }
+  }
 }
 
 // tfmb-matmap and tfmb-heat resolve a model's material name by the one rule of the database
