@@ -29,7 +29,10 @@ def write(path, x):
         f.attrs["format"] = "tfmb/walldisp"
         f.attrs["format_version"] = "1.0"
         for i, wall in enumerate(("lower", "upper")):
-            f[f"walls/{wall}/x0"] = np.zeros((n_points // 2, 2))
+            # wall points 10 m long, 0.2 m apart (tfmb-couple refuses a displacement of more than
+            # twice the walls' extent)
+            f[f"walls/{wall}/x0"] = np.column_stack([np.linspace(0.0, 10.0, n_points // 2),
+                                                     np.full(n_points // 2, 0.2 * i - 0.1)])
             f[f"walls/{wall}/displacement"] = x[i * n // 2:(i + 1) * n // 2].reshape(-1, 2)
 
 
@@ -80,6 +83,16 @@ with h5py.File("bad.h5", "w") as f:
 code = subprocess.run([couple, "--iteration", "1", "--raw", "bad.h5", "--state", "s.npz",
                        "--log", "l.csv"], capture_output=True).returncode
 assert code == 3, code
+# Bad input: a displacement no supported wall can have (more than twice the walls' extent, here
+# 2 x 10.002 m): refused in one line, not iterated on as "diverged".
+huge = np.zeros(n)
+huge[3] = 1e300
+write("huge.h5", huge)
+r = subprocess.run([couple, "--iteration", "1", "--raw", "huge.h5", "--state", "s.npz",
+                    "--log", "l.csv"], capture_output=True, text=True)
+assert r.returncode == 3, (r.returncode, r.stderr)
+assert "huge.h5: /walls/lower/displacement: row 1: 1e+300 m, more than twice the walls' extent" \
+    in r.stderr, r.stderr
 code = subprocess.run([couple, "--iteration", "0", "--raw", "raw-1.h5", "--state", "s.npz",
                        "--log", "l.csv"], capture_output=True).returncode
 assert code == 2, code
