@@ -335,7 +335,8 @@ Document example_document(const Schema& schema) {
   std::map<std::string, std::size_t> symbols;
   // A mesh-bearing example holds a real mesh (below): a 3 x 2 grid of nodes, one quad and two
   // triangles, so that it meets the topology rules read_mesh and check_boundaries apply.
-  if (schema.mesh_bearing) symbols = {{"N", 6}, {"Nt", 2}, {"Nq", 1}};
+  if (schema.mesh_bearing)
+    symbols = {{"N", 6}, {"Nt", 2}, {"Nq", 1}};
   auto extent = [&](const std::string& expression) -> std::size_t {
     if (expression == "*") return 3;
     std::size_t total = 0;
@@ -442,11 +443,14 @@ Document example_document(const Schema& schema) {
   // reader requires of s and position.
   if (schema.kind == "loads") {
     for (auto& [path, value] : document.datasets) {
-      if (!path.ends_with("/position")) continue;
+      if (!path.ends_with("/position"))
+        continue;
       const auto s = document.datasets.find(path.substr(0, path.size() - 9) + "/s");
-      if (s == document.datasets.end()) continue;
+      if (s == document.datasets.end())
+        continue;
       value.floats.assign(2 * s->second.floats.size(), 0.0);
-      for (std::size_t i = 0; i < s->second.floats.size(); ++i) value.floats[2 * i] = s->second.floats[i];
+      for (std::size_t i = 0; i < s->second.floats.size(); ++i)
+        value.floats[2 * i] = s->second.floats[i];
     }
   }
   return document;

@@ -94,8 +94,8 @@ Loads read_loads(const std::filesystem::path& file) {
         if (!(arc >= chord * (1.0 - 1e-9) - 1e-12 &&
               arc <= 0.5 * std::numbers::pi * chord * (1.0 + 1e-9) + 1e-12)) {
           std::ostringstream what;
-          what << "node " << i << ": an arc length step of " << arc << " m between nodes "
-               << chord << " m apart (/position); it lies between 1 and pi/2 times that";
+          what << "node " << i << ": an arc length step of " << arc << " m between nodes " << chord
+               << " m apart (/position); it lies between 1 and pi/2 times that";
           r.fail(g + "/s", what.str());
         }
       }

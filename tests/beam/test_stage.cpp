@@ -469,8 +469,9 @@ TEST(Stage, NodalMomentsAndPointLoads) {
     beam::run(o, log);
     ADD_FAILURE() << "a loads file without the model's flap was taken";
   } catch (const BadInput& e) {
-    EXPECT_NE(std::string(e.what()).find("loads.h5: /flaps: no group for the model's flap 'sample'"),
-              std::string::npos)
+    EXPECT_NE(
+        std::string(e.what()).find("loads.h5: /flaps: no group for the model's flap 'sample'"),
+        std::string::npos)
         << e.what();
   }
 }

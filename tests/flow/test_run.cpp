@@ -52,8 +52,10 @@ void write_flowmesh(const std::filesystem::path& file, const flow::Mesh& m,
     for (std::size_t k = 0; k < cell.size(); ++k)
       cell_edges.insert({cell[k], cell[(k + 1) % cell.size()]});
   };
-  for (const auto& t : m.triangles) add_cell(t);
-  for (const auto& q : m.quads) add_cell(q);
+  for (const auto& t : m.triangles)
+    add_cell(t);
+  for (const auto& q : m.quads)
+    add_cell(q);
   for (const auto& b : m.boundaries) {
     if (drop_outlet && b.name == "outlet")
       continue;

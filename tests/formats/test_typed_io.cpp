@@ -83,14 +83,29 @@ TEST(TypedIo, MaterialsRoundTripAndASingularSectionIsRefused) {
   }
 }
 
-TEST(TypedIo, LoadsRoundTripAndAReversedArcLengthIsRefused) {
+namespace {
+
+// A loads file's frame with no flap yet, and a flap "lower" of width 1 m without nodes.
+formats::Loads empty_loads() {
   formats::Loads loads;
   loads.header.creator = "test";
   loads.method = "conservative";
   loads.load_basis = "flap width";
+  return loads;
+}
+
+formats::LoadsFlap lower_flap() {
   formats::LoadsFlap f;
   f.name = "lower";
   f.width = 1.0;
+  return f;
+}
+
+}  // namespace
+
+TEST(TypedIo, LoadsRoundTripAndAReversedArcLengthIsRefused) {
+  formats::Loads loads = empty_loads();
+  formats::LoadsFlap f = lower_flap();
   f.traces = {"lower_inner", "lower_outer"};
   f.s = {0.0, 0.1, 0.2};
   for (int i = 0; i < 3; ++i) {
@@ -130,13 +145,8 @@ TEST(TypedIo, LoadsRoundTripAndAReversedArcLengthIsRefused) {
 // With positions, an arc-length step lies between the nodes' distance and pi/2 times it (an arc
 // of up to a half turn): the mutation suite's 1e300 m arc length changed nodal-forces' lumping.
 TEST(TypedIo, LoadsArcLengthMustFitThePositions) {
-  formats::Loads loads;
-  loads.header.creator = "test";
-  loads.method = "conservative";
-  loads.load_basis = "flap width";
-  formats::LoadsFlap f;
-  f.name = "lower";
-  f.width = 1.0;
+  formats::Loads loads = empty_loads();
+  formats::LoadsFlap f = lower_flap();
   f.traces = {"lower_inner"};
   // a quarter circle of radius 0.1 m in two steps: arc 0.0785 m per chord 0.0765 m
   const double r = 0.1, step = 0.25 * std::numbers::pi;

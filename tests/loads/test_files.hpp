@@ -248,8 +248,10 @@ inline void write_flow(const std::filesystem::path& file, const std::vector<Test
       const auto off = base + static_cast<std::int64_t>(n) + k;  // offset node of point k
       // counter-clockwise, as the flowmesh spec has cells: the offset row is on the trace's
       // left for fluid_side +1 and on its right for -1
-      if (t.fluid_side > 0) quads.push_back({base + k, base + k + 1, off + 1, off});
-      else quads.push_back({base + k, off, off + 1, base + k + 1});
+      if (t.fluid_side > 0)
+        quads.push_back({base + k, base + k + 1, off + 1, off});
+      else
+        quads.push_back({base + k, off, off + 1, base + k + 1});
     }
   }
   const auto N = static_cast<Eigen::Index>(points.size());
@@ -258,8 +260,10 @@ inline void write_flow(const std::filesystem::path& file, const std::vector<Test
   w.write("/mesh/points", matrix(points), "m");
   h5::MatrixXiR tri(1, 3);
   const auto first_offset = static_cast<std::int64_t>(traces.front().points.size());
-  if (traces.front().fluid_side > 0) tri << 0, 1, first_offset;
-  else tri << 0, first_offset, 1;
+  if (traces.front().fluid_side > 0)
+    tri << 0, 1, first_offset;
+  else
+    tri << 0, first_offset, 1;
   w.write("/mesh/cells/triangle", tri);
   h5::MatrixXiR q(static_cast<Eigen::Index>(quads.size()), 4);
   for (std::size_t c = 0; c < quads.size(); ++c) {

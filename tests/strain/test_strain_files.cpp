@@ -30,8 +30,8 @@ std::vector<std::string> problems(const std::filesystem::path& file, const std::
 }
 
 // materials.h5 of one flap with uniform properties and the given free thermal strains.
-void write_materials(const std::filesystem::path& file, double thermal_inner, double thermal_outer, int outer_sign = 1,
-                     double thickness_attribute = kThickness) {
+void write_materials(const std::filesystem::path& file, double thermal_inner, double thermal_outer,
+                     int outer_sign = 1, double thickness_attribute = kThickness) {
   formats::Document doc = tf::example_with("materials", "/flaps", {"upper"});
   const std::string g = "/flaps/upper";
   const std::size_t n = kElements;
@@ -226,7 +226,8 @@ TEST(StrainFiles, ThicknessThatIsNotTheSectionsIsRefused) {
       f.run(MechanicalBasis::mechanical);
       ADD_FAILURE() << "thickness " << wrong << " m taken";
     } catch (const BadInput& e) {
-      EXPECT_NE(std::string(e.what()).find("/flaps/upper@thickness: "), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("/flaps/upper@thickness: "), std::string::npos)
+          << e.what();
       EXPECT_NE(std::string(e.what()).find("that of a 0.004 m thick rectangle"), std::string::npos)
           << e.what();
     }

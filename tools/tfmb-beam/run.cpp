@@ -254,8 +254,9 @@ FileModel read_model(const Options& options) {
       const bool present = std::any_of(loads.flaps.begin(), loads.flaps.end(),
                                        [&](const formats::LoadsFlap& f) { return f.name == name; });
       if (!present)
-        loads.fail("/flaps", "no group for the model's flap '" + name +
-                                 "' (a loads file has every flap, with zeros where one is unloaded)");
+        loads.fail("/flaps",
+                   "no group for the model's flap '" + name +
+                       "' (a loads file has every flap, with zeros where one is unloaded)");
     }
     for (const formats::LoadsFlap& flap : loads.flaps) {
       const std::string g = "/flaps/" + flap.name;
