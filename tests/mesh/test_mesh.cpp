@@ -2,7 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <set>
 
 #include "run_tool.hpp"
@@ -114,16 +116,19 @@ namespace {
 
 // Writes a walldisp file rotating the walls of one flap rigidly about `centre` by `angle`, with
 // x0 the mesh's own wall nodes (with their ids, as tfmb-loads --mesh writes); or, with `shift`,
-// translating them.
+// translating them. The walls of `still_flap` are written too, with no displacement.
 void write_rotation(const formats::Mesh& m, const std::string& flap, const Eigen::Vector2d& centre,
-                    double angle, const Eigen::Vector2d& shift, const std::filesystem::path& file) {
+                    double angle, const Eigen::Vector2d& shift, const std::filesystem::path& file,
+                    const std::string& still_flap = "") {
   h5::Writer w(file);
   formats::write_header(w, "walldisp", {});
   w.set_attr("/", "wall_source", "flowmesh");
-  const Eigen::Matrix2d rotation = Eigen::Rotation2D<double>(angle).toRotationMatrix();
   for (const auto& [name, b] : m.boundaries) {
-    if (b.flap != flap)
+    if (b.flap != flap && (still_flap.empty() || b.flap != still_flap))
       continue;
+    const bool still = b.flap != flap;
+    const Eigen::Matrix2d rotation =
+        Eigen::Rotation2D<double>(still ? 0.0 : angle).toRotationMatrix();
     h5::MatrixXdR x0(b.edges.rows() + 1, 2), u(b.edges.rows() + 1, 2);
     std::vector<std::int64_t> nodes;
     for (Eigen::Index e = 0; e <= b.edges.rows(); ++e) {
@@ -131,7 +136,8 @@ void write_rotation(const formats::Mesh& m, const std::string& flap, const Eigen
       const Eigen::Vector2d p = m.points.row(node).transpose();
       x0.row(e) = p.transpose();
       nodes.push_back(node);
-      u.row(e) = (rotation * (p - centre) + centre - p + shift).transpose();
+      u.row(e) = (rotation * (p - centre) + centre - p + (still ? Eigen::Vector2d::Zero() : shift))
+                     .transpose();
     }
     w.create_group("/walls/" + name);
     w.set_attr("/walls/" + name, "flap", b.flap);
@@ -162,7 +168,7 @@ TEST(Deform, RigidTwoDegreeRotationOfOneFlapKeepsCellsValidAndWallsExact) {
   const auto walls = formats::read_walldisp(dir / "walldisp.h5").walls;
   ASSERT_EQ(walls.size(), 3u);  // inner, outer, end
   mesh::DeformReport deform_report;
-  const auto moved = mesh::deform_mesh(m, walls, deform_report);
+  const auto moved = mesh::deform_mesh(m, walls, {}, deform_report);
   EXPECT_EQ(deform_report.quality.invalid_cells, 0u);
   EXPECT_GT(deform_report.quality.min_area, 0.0);
   EXPECT_EQ(moved.triangles, m.triangles);
@@ -185,6 +191,119 @@ TEST(Deform, RigidTwoDegreeRotationOfOneFlapKeepsCellsValidAndWallsExact) {
   // Far-field nodes do not move.
   const auto& far = m.boundaries.at("farfield_upper");
   EXPECT_EQ((moved.points.row(far.edges(0, 0)) - m.points.row(far.edges(0, 0))).norm(), 0.0);
+}
+
+namespace {
+
+// The nodes of a flap's wall boundaries.
+std::set<std::int64_t> flap_wall_nodes(const formats::Mesh& m, const std::string& flap) {
+  std::set<std::int64_t> nodes;
+  for (const auto& [name, b] : m.boundaries) {
+    if (b.flap != flap)
+      continue;
+    for (Eigen::Index e = 0; e < b.edges.rows(); ++e)
+      nodes.insert({b.edges(e, 0), b.edges(e, 1)});
+  }
+  return nodes;
+}
+
+// Signed area of quad c (counter-clockwise positive) in `points`.
+double quad_area(const formats::Mesh& m, const h5::MatrixXdR& points, Eigen::Index c) {
+  double twice = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    const auto a = m.quads(c, k), b = m.quads(c, (k + 1) % 4);
+    twice += points(a, 0) * points(b, 1) - points(b, 0) * points(a, 1);
+  }
+  return 0.5 * twice;
+}
+
+}  // namespace
+
+TEST(Deform, RotationsTurnTheWallLayersOfATurningFlapWithIt) {
+  // upper_3 turned 30 deg about its hinge: by displacements alone, the wall-layer quads along it
+  // are sheared (each node takes the displacement of the nearest wall nodes, not their turn);
+  // with the rotations interpolated too (Luke, Collins & Blades 2012, eq. 4) the layers turn
+  // rigidly, so their areas stay what they were.
+  const auto model = load_case("simple-nozzle");
+  mesh::FlowMeshReport report;
+  mesh::FlowMeshOptions options;
+  options.scale = 4.0;
+  const auto m = mesh::build_flow_mesh(model, options, report, quiet());
+  const auto dir = test::scratch_dir("deform-turn");
+  Eigen::Vector2d hinge = Eigen::Vector2d::Zero();
+  for (const auto& j : model.joints) {
+    if (j.name == "upper_23")
+      hinge = j.point;
+  }
+  write_rotation(m, "upper_3", hinge, 30.0 * M_PI / 180.0, Eigen::Vector2d::Zero(),
+                 dir / "walldisp.h5");
+  const auto walls = formats::read_walldisp(dir / "walldisp.h5").walls;
+  const auto on_flap = flap_wall_nodes(m, "upper_3");
+  // the largest relative area change of the quads with a node on upper_3's walls, away from the
+  // joint with upper_2 (held), where the turn must shear the cells whichever way
+  auto worst_area_change = [&](bool rotations) {
+    mesh::DeformReport deform_report;
+    const auto moved = mesh::deform_mesh(m, walls, {rotations}, deform_report);
+    EXPECT_EQ(deform_report.quality.invalid_cells, 0u);
+    double worst = 0.0;
+    int quads = 0;
+    for (Eigen::Index c = 0; c < m.quads.rows(); ++c) {
+      bool touches = false, near_joint = false;
+      for (int k = 0; k < 4; ++k) {
+        touches = touches || on_flap.count(m.quads(c, k));
+        near_joint = near_joint || (m.points.row(m.quads(c, k)).transpose() - hinge).norm() < 0.05;
+      }
+      if (!touches || near_joint)
+        continue;
+      ++quads;
+      const double before = quad_area(m, m.points, c);
+      worst = std::max(worst, std::abs(quad_area(m, moved.points, c) / before - 1.0));
+    }
+    EXPECT_GT(quads, 20);
+    return worst;
+  };
+  const double with_rotations = worst_area_change(true);
+  const double without = worst_area_change(false);
+  EXPECT_LT(with_rotations, 0.02);
+  EXPECT_GT(without, 5.0 * with_rotations) << "the test would not tell the two apart";
+  std::cout << "largest area change of upper_3's wall quads: " << with_rotations
+            << " with rotations, " << without << " without\n";
+}
+
+TEST(Deform, NodeSharedByTwoFlapsTakesTheMeanOfTheirDisplacements) {
+  // The inner and outer walls of upper_2 and upper_3 share a node at their joint. upper_3 turned
+  // 5 deg about a point off the joint and upper_2 held: the walldisp gives the shared nodes two
+  // displacements, and each takes their mean, whichever wall is read first.
+  const auto model = load_case("simple-nozzle");
+  mesh::FlowMeshReport report;
+  mesh::FlowMeshOptions options;
+  options.scale = 4.0;
+  const auto m = mesh::build_flow_mesh(model, options, report, quiet());
+  const auto dir = test::scratch_dir("deform-shared");
+  const Eigen::Vector2d centre(0.6, 0.0);
+  const double angle = 5.0 * M_PI / 180.0;
+  write_rotation(m, "upper_3", centre, angle, Eigen::Vector2d::Zero(), dir / "walldisp.h5",
+                 "upper_2");
+  auto walls = formats::read_walldisp(dir / "walldisp.h5").walls;
+  std::set<std::int64_t> shared;
+  for (auto node : flap_wall_nodes(m, "upper_3")) {
+    if (flap_wall_nodes(m, "upper_2").count(node))
+      shared.insert(node);
+  }
+  ASSERT_EQ(shared.size(), 2u);  // inner and outer corner
+  const Eigen::Matrix2d rotation = Eigen::Rotation2D<double>(angle).toRotationMatrix();
+  for (int order = 0; order < 2; ++order) {
+    if (order == 1)
+      std::reverse(walls.begin(), walls.end());
+    mesh::DeformReport deform_report;
+    const auto moved = mesh::deform_mesh(m, walls, {}, deform_report);
+    for (auto node : shared) {
+      const Eigen::Vector2d p = m.points.row(node).transpose();
+      const Eigen::Vector2d expected = p + 0.5 * (rotation * (p - centre) + centre - p);
+      EXPECT_LT((moved.points.row(node).transpose() - expected).norm(), 1e-12)
+          << "node " << node << ", walls in order " << order;
+    }
+  }
 }
 
 TEST(Deform, ModelWallDisplacementMovesTheWholeFlapIncludingItsEndFace) {
@@ -214,7 +333,7 @@ TEST(Deform, ModelWallDisplacementMovesTheWholeFlapIncludingItsEndFace) {
     walls.push_back(w);
   }
   mesh::DeformReport deform_report;
-  const auto moved = mesh::deform_mesh(m, walls, deform_report);
+  const auto moved = mesh::deform_mesh(m, walls, {}, deform_report);
   EXPECT_EQ(deform_report.quality.invalid_cells, 0u);
   EXPECT_GT(deform_report.projected_nodes, 0u);  // the end face at least
   EXPECT_LT(deform_report.largest_projection, flap->thickness);
@@ -265,8 +384,8 @@ TEST(Deform, FoldingDisplacementIsRefusedWithTheAdmissibleFraction) {
     return w;
   };
   mesh::DeformReport report;
-  EXPECT_NO_THROW(mesh::deform_mesh(m, scaled(0.99 * fraction), report));
-  EXPECT_THROW(mesh::deform_mesh(m, scaled(std::min(1.0, 1.01 * fraction)), report),
+  EXPECT_NO_THROW(mesh::deform_mesh(m, scaled(0.99 * fraction), {}, report));
+  EXPECT_THROW(mesh::deform_mesh(m, scaled(std::min(1.0, 1.01 * fraction)), {}, report),
                tfmb::BadInput);
 }
 

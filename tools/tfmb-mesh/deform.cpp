@@ -1,8 +1,10 @@
 // Mesh deformation for two-way coupling: wall nodes take the wall displacement exactly (linear
 // interpolation along the walldisp curve), every other node the inverse-distance-weighted
-// displacement of all boundary nodes (Luke, Collins & Blades, J. Comput. Phys. 231 (2012)
-// 5859, eq. 2-3: w_i = A_i ((L/d_i)^a + (alpha L/d_i)^b), a = 3, b = 5, alpha = 0.1); other
-// boundaries are held fixed. Same topology, so the flow solver can restart.
+// motion of all boundary nodes (Luke, Collins & Blades, J. Comput. Phys. 231 (2012) 586-601,
+// eq. 2-3: w_i = A_i ((L/d_i)^a + (alpha L/d_i)^b), a = 3, b = 5, alpha = 0.1); other
+// boundaries are held fixed. With rotations (their eq. 4), each boundary node carries the
+// rotation of its wall as well as its displacement, so that the cells near a turning wall turn
+// with it instead of being sheared. Same topology, so the flow solver can restart.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -38,12 +40,58 @@ bool is_wall(const formats::Boundary& boundary) {
   return boundary.kind == "wall" || boundary.kind == "slip_wall";
 }
 
-// The boundary nodes whose displacement is given, with the boundary length each stands for (the
-// area A_i of the weights); every node not listed moves by interpolation.
+// The boundary nodes whose displacement is given, with the rotation of the wall there and the
+// boundary length each stands for (the area A_i of the weights); every node not listed moves by
+// interpolation.
 struct BoundarySources {
   std::map<std::int64_t, Vector> prescribed;   // [m] displacement of a boundary node
+  std::map<std::int64_t, double> rotation;     // [rad] counter-clockwise turn of its wall
   std::map<std::int64_t, double> node_length;  // [m] half the length of its boundary edges
 };
+
+// The motion of a node that two or more walls give (the shared node of two flaps at a joint,
+// whose sections move differently at a clearance joint or a hinge): their mean, so the result
+// does not depend on which wall is read first.
+class NodeMotions {
+ public:
+  void add(std::int64_t node, const Vector& u, double rotation) {
+    Sum& sum = sums_[node];
+    sum.u += u;
+    sum.rotation += rotation;
+    ++sum.count;
+  }
+  bool has(std::int64_t node) const { return sums_.count(node) > 0; }
+  void put_into(BoundarySources& sources) const {
+    for (const auto& [node, sum] : sums_) {
+      sources.prescribed[node] = sum.u / sum.count;
+      sources.rotation[node] = sum.rotation / sum.count;
+    }
+  }
+
+ private:
+  struct Sum {
+    Vector u = Vector::Zero();
+    double rotation = 0.0;
+    int count = 0;
+  };
+  std::map<std::int64_t, Sum> sums_;
+};
+
+// [rad] counter-clockwise angle from a to b
+double turn_angle(const Vector& a, const Vector& b) {
+  return std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));
+}
+
+// The turn of a walldisp curve at its point k: of the chord through its neighbours (one-sided at
+// the ends); 0 for a single point.
+double curve_rotation_at(const WallDisplacement& w, std::size_t k) {
+  const std::size_t n = w.x0.size();
+  if (n < 2)
+    return 0.0;
+  const std::size_t a = k > 0 ? k - 1 : 0;
+  const std::size_t b = std::min(k + 1, n - 1);
+  return turn_angle(w.x0[b] - w.x0[a], w.x0[b] + w.displacement[b] - w.x0[a] - w.displacement[a]);
+}
 
 // The mesh nodes before the deformation and the diagonal of their bounding box (the length
 // scale L of the weights and of every tolerance).
@@ -72,7 +120,7 @@ NodePositions node_positions(const Mesh& mesh) {
 // Walldisp points that name their flow-mesh node (tfmb-loads writes them for the mesh it read)
 // prescribe that node; a point away from its node means the file belongs to another mesh.
 void prescribe_named_nodes(const std::vector<WallDisplacement>& walls, const NodePositions& nodes,
-                           BoundarySources& sources) {
+                           NodeMotions& motions) {
   const std::size_t n = nodes.x.size();
   for (const auto& w : walls) {
     for (std::size_t k = 0; k < w.nodes.size(); ++k) {
@@ -87,7 +135,7 @@ void prescribe_named_nodes(const std::vector<WallDisplacement>& walls, const Nod
                        text::format_number(d) + " m from flow-mesh node " + std::to_string(node) +
                        ": computed for another mesh");
       }
-      sources.prescribed[node] = w.displacement[k];
+      motions.add(node, w.displacement[k], curve_rotation_at(w, k));
     }
   }
 }
@@ -107,12 +155,13 @@ void check_wall_names(const Mesh& mesh, const std::vector<WallDisplacement>& wal
   }
 }
 
-// The displacement at the point of a walldisp curve closest to p, linear along its segments;
-// returns the distance from p to the curve.
-double interpolate_along(const WallDisplacement& w, const Vector& p, Vector& u) {
+// The displacement at the point of a walldisp curve closest to p, linear along its segments,
+// and the turn of that segment; returns the distance from p to the curve.
+double interpolate_along(const WallDisplacement& w, const Vector& p, Vector& u, double& rotation) {
   double best = 1e300;
   if (w.x0.size() == 1) {
     u = w.displacement[0];
+    rotation = 0.0;
     return (p - w.x0[0]).norm();
   }
   for (std::size_t s = 0; s + 1 < w.x0.size(); ++s) {
@@ -121,21 +170,25 @@ double interpolate_along(const WallDisplacement& w, const Vector& p, Vector& u) 
     if (d < best) {
       best = d;
       u = (1 - t) * w.displacement[s] + t * w.displacement[s + 1];
+      rotation = turn_angle(w.x0[s + 1] - w.x0[s],
+                            w.x0[s + 1] + w.displacement[s + 1] - w.x0[s] - w.displacement[s]);
     }
   }
   return best;
 }
 
-// Takes the displacement u of the closest point of `curves` if it is closer than `best`, the
-// distance to the closest curve so far.
+// Takes the displacement u and turn of the closest point of `curves` if it is closer than
+// `best`, the distance to the closest curve so far.
 void nearest_on_curves(const std::vector<const WallDisplacement*>& curves, const Vector& p,
-                       Vector& u, double& best) {
+                       Vector& u, double& rotation, double& best) {
   Vector candidate = Vector::Zero();
+  double candidate_rotation = 0.0;
   for (const auto* w : curves) {
-    const double d = interpolate_along(*w, p, candidate);
+    const double d = interpolate_along(*w, p, candidate, candidate_rotation);
     if (d < best) {
       best = d;
       u = candidate;
+      rotation = candidate_rotation;
     }
   }
 }
@@ -181,18 +234,20 @@ WallCurves curves_of_wall(const std::string& name, const formats::Boundary& wall
 // wall's length they take the nearest curve point's displacement (counted in the report).
 void prescribe_wall(const std::string& name, const formats::Boundary& wall,
                     const WallCurves& curves, double wall_length, const NodePositions& nodes,
-                    BoundarySources& sources, DeformReport& report) {
+                    const NodeMotions& named, NodeMotions& motions, DeformReport& report) {
+  std::set<std::int64_t> done;  // each node once per wall (it ends two of its edges)
   for (Eigen::Index e = 0; e < wall.edges.rows(); ++e) {
     for (int k = 0; k < 2; ++k) {
       const std::int64_t node = wall.edges(e, k);
-      if (sources.prescribed.count(node))
+      if (named.has(node) || !done.insert(node).second)
         continue;
       const Vector& p = nodes.x[static_cast<std::size_t>(node)];
       Vector u = Vector::Zero();
+      double rotation = 0.0;
       double best = 1e300;
-      nearest_on_curves(curves.same_name, p, u, best);
+      nearest_on_curves(curves.same_name, p, u, rotation, best);
       if (best > nodes.tight)
-        nearest_on_curves(curves.same_flap, p, u, best);
+        nearest_on_curves(curves.same_flap, p, u, rotation, best);
       if (best > nodes.tight) {
         const double loose = 0.05 * std::max(wall_length, 1e-3 * nodes.extent);
         if (best > loose) {
@@ -206,7 +261,7 @@ void prescribe_wall(const std::string& name, const formats::Boundary& wall,
         ++report.projected_nodes;
         report.largest_projection = std::max(report.largest_projection, best);
       }
-      sources.prescribed[node] = u;
+      motions.add(node, u, rotation);
     }
   }
 }
@@ -214,7 +269,8 @@ void prescribe_wall(const std::string& name, const formats::Boundary& wall,
 // Flap wall boundaries of the mesh: interpolated along the walldisp curve of the same name, or
 // projected onto the curves of the same flap.
 void prescribe_walls(const Mesh& mesh, const std::vector<WallDisplacement>& walls,
-                     const NodePositions& nodes, BoundarySources& sources, DeformReport& report) {
+                     const NodePositions& nodes, const NodeMotions& named, NodeMotions& motions,
+                     DeformReport& report) {
   report.projected_nodes = 0;
   report.largest_projection = 0.0;
   for (const auto& [name, wall] : mesh.boundaries) {
@@ -224,7 +280,7 @@ void prescribe_walls(const Mesh& mesh, const std::vector<WallDisplacement>& wall
     if (curves.same_name.empty() && curves.same_flap.empty())
       continue;
     const double wall_length = flap_wall_length(mesh, name, wall, nodes.x);
-    prescribe_wall(name, wall, curves, wall_length, nodes, sources, report);
+    prescribe_wall(name, wall, curves, wall_length, nodes, named, motions, report);
   }
 }
 
@@ -240,6 +296,7 @@ void hold_other_boundaries(const Mesh& mesh, const std::vector<Vector>& x,
       for (int k = 0; k < 2; ++k) {
         sources.node_length[b.edges(e, k)] += 0.5 * len;
         sources.prescribed.try_emplace(b.edges(e, k), Vector::Zero());
+        sources.rotation.try_emplace(b.edges(e, k), 0.0);
       }
     }
   }
@@ -247,16 +304,25 @@ void hold_other_boundaries(const Mesh& mesh, const std::vector<Vector>& x,
 
 // Displacement of every node: the prescribed one on the boundary, inside the weighted mean of
 // Luke, Collins & Blades (2012) eq. 2-3 over all boundary nodes, w_s = A_s ((L/d)^3 + (alpha
-// L/d)^5) with L the mesh extent and alpha = 0.1.
+// L/d)^5) with L the mesh extent and alpha = 0.1. With rotations, boundary node s moves the
+// point x rigidly with its wall, u_s + (R(theta_s) - I)(x - x_s) (their eq. 4), instead of by
+// u_s alone: a rigidly turning flap then turns the cells around it rigidly.
 std::vector<Vector> interpolated_displacement(const NodePositions& nodes,
-                                              const BoundarySources& sources) {
+                                              const BoundarySources& sources, bool rotations) {
   const std::size_t n = nodes.x.size();
   const auto& x = nodes.x;
   std::vector<Vector> source_x, source_u;
+  std::vector<double> source_cos_minus_1, source_sin;
   std::vector<double> source_area;
   for (const auto& [node, u] : sources.prescribed) {
     source_x.push_back(x[static_cast<std::size_t>(node)]);
     source_u.push_back(u);
+    const auto turn = sources.rotation.find(node);
+    const double theta = rotations && turn != sources.rotation.end() ? turn->second : 0.0;
+    // cos - 1 as -2 sin^2(theta/2): no cancellation for small turns
+    const double half_sin = std::sin(0.5 * theta);
+    source_cos_minus_1.push_back(-2.0 * half_sin * half_sin);
+    source_sin.push_back(std::sin(theta));
     const auto length = sources.node_length.find(node);  // a named node may be off the boundaries
     source_area.push_back(length == sources.node_length.end() ? 0.0 : length->second);
   }
@@ -276,12 +342,15 @@ std::vector<Vector> interpolated_displacement(const NodePositions& nodes,
     Vector sum = Vector::Zero();
     double weight_sum = 0.0;
     for (std::size_t s = 0; s < ns; ++s) {
-      const double d = std::max((x[i] - source_x[s]).norm(), 1e-300);
+      const Vector offset = x[i] - source_x[s];
+      const double d = std::max(offset.norm(), 1e-300);
       const double r = length_scale / d;
       const double r3 = r * r * r;
       const double ar = alpha * r;
       const double w = source_area[s] * (r3 + ar * ar * ar * ar * ar);
-      sum += w * source_u[s];
+      const double c = source_cos_minus_1[s], sn = source_sin[s];
+      const Vector turned(c * offset.x() - sn * offset.y(), sn * offset.x() + c * offset.y());
+      sum += w * (source_u[s] + turned);
       weight_sum += w;
     }
     displacement[i] = sum / weight_sum;
@@ -340,18 +409,22 @@ BadInput inverted_cells_error(const Mesh& mesh, const Mesh& moved, const std::ve
 // The phases: the boundary nodes' displacements (named nodes, then the walls by curve, then the
 // other boundaries fixed), the interpolation inside, and the validity check of the moved mesh.
 Mesh deform_mesh(const Mesh& mesh, const std::vector<WallDisplacement>& walls,
-                 DeformReport& report) {
+                 const DeformOptions& options, DeformReport& report) {
   const NodePositions nodes = node_positions(mesh);
   BoundarySources sources;
-  prescribe_named_nodes(walls, nodes, sources);
+  NodeMotions named, by_curve;
+  prescribe_named_nodes(walls, nodes, named);
   check_wall_names(mesh, walls);
-  prescribe_walls(mesh, walls, nodes, sources, report);
+  prescribe_walls(mesh, walls, nodes, named, by_curve, report);
+  named.put_into(sources);
+  by_curve.put_into(sources);
   hold_other_boundaries(mesh, nodes.x, sources);
   report.moved_wall_nodes = 0;
   for (const auto& [node, u] : sources.prescribed)
     report.moved_wall_nodes += u.squaredNorm() > 0.0;
 
-  const std::vector<Vector> displacement = interpolated_displacement(nodes, sources);
+  const std::vector<Vector> displacement =
+      interpolated_displacement(nodes, sources, options.rotations);
   Mesh out = mesh;
   out.points = moved_points(mesh, displacement, 1.0);
   std::int64_t bad = -1;

@@ -46,6 +46,9 @@ int main(int argc, char** argv) {
   deform_table.add("flowmesh", options.input, "", "flowmesh.h5 to deform")->required();
   deform_table.add("walldisp", options.walldisp, "", "walldisp.h5 (formats/walldisp.md)")
       ->required();
+  deform_table.add_flag("--rotations,!--no-rotations", options.deform.rotations,
+                        "interpolate the walls' rotations as well as their displacements, so that "
+                        "cells near a turning wall turn with it (Luke, Collins & Blades 2012)");
   deform_table.add_output(options.output, "deformed flow mesh file");
   return tfmb::cli::run_main(app, argc, argv, [&] {
     options.command = app.get_subcommands().front()->get_name();

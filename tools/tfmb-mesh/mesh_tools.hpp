@@ -77,14 +77,19 @@ struct DeformReport {
   std::size_t projected_nodes = 0;  // wall nodes off the walldisp curves (joins, lips, end faces)
   double largest_projection = 0.0;  // [m] their largest distance to the curves
 };
+struct DeformOptions {
+  // interpolate each wall node's rotation as well as its displacement (Luke, Collins & Blades
+  // 2012, eq. 4); false: displacements only
+  bool rotations = false;
+};
 // Moves the wall nodes by the wall displacement and the rest by inverse-distance weighting (Luke,
 // Collins & Blades 2012). Wall nodes: given by node id (walldisp `node`), else interpolated along
 // the walldisp curve of the same name, else (flap walls the walldisp does not list, e.g. end
 // faces, and the joins between flaps) taken from the nearest point of that flap's walldisp
-// curves. Throws BadInput (with the admissible fraction found by bisection) if a cell would
-// invert.
+// curves; a node two walls give (a joint's shared node) takes their mean. Throws BadInput (with
+// the admissible fraction found by bisection) if a cell would invert.
 Mesh deform_mesh(const Mesh& mesh, const std::vector<WallDisplacement>& walls,
-                 DeformReport& report);
+                 const DeformOptions& options, DeformReport& report);
 
 // --- commands ------------------------------------------------------------------------------
 struct Options {
@@ -93,6 +98,7 @@ struct Options {
   double scale = 0.0;  // 0: the case's mesh.scale
   int algorithm = 6;
   double max_cells = FlowMeshOptions{}.max_cells;
+  DeformOptions deform;
   std::string command_line;
   std::string settings_toml;  // the command line's options (cli::OptionTable) for /provenance
 };

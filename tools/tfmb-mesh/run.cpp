@@ -99,7 +99,7 @@ int run(const Options& options, const Logger& log) {
     out.header.depth = in.header.depth;
     out.header.geometry = in.header.geometry;
     try {
-      out.mesh = deform_mesh(in.mesh, walls, report);
+      out.mesh = deform_mesh(in.mesh, walls, options.deform, report);
     } catch (const BadInput& e) {
       // deform_mesh speaks of "walldisp: ..." and "deform: ...": a walldisp that does not fit the
       // mesh (points away from their nodes, unknown walls, a displacement that would invert
