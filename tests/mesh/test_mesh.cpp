@@ -222,7 +222,7 @@ double quad_area(const formats::Mesh& m, const h5::MatrixXdR& points, Eigen::Ind
 TEST(Deform, RotationsTurnTheWallLayersOfATurningFlapWithIt) {
   // upper_3 turned 30 deg about its hinge: by displacements alone, the wall-layer quads along it
   // are sheared (each node takes the displacement of the nearest wall nodes, not their turn);
-  // with the rotations interpolated too (Luke, Collins & Blades 2012, eq. 4) the layers turn
+  // with the rotations interpolated too (Luke, Collins & Blades 2012) the layers turn
   // rigidly, so their areas stay what they were.
   const auto model = load_case("simple-nozzle");
   mesh::FlowMeshReport report;

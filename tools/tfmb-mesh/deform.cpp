@@ -2,7 +2,7 @@
 // interpolation along the walldisp curve), every other node the inverse-distance-weighted
 // motion of all boundary nodes (Luke, Collins & Blades, J. Comput. Phys. 231 (2012) 586-601,
 // eq. 2-3: w_i = A_i ((L/d_i)^a + (alpha L/d_i)^b), a = 3, b = 5, alpha = 0.1); other
-// boundaries are held fixed. With rotations (their eq. 4), each boundary node carries the
+// boundaries are held fixed. With rotations, each boundary node carries the
 // rotation of its wall as well as its displacement, so that the cells near a turning wall turn
 // with it instead of being sheared. Same topology, so the flow solver can restart.
 #include <algorithm>
@@ -305,7 +305,7 @@ void hold_other_boundaries(const Mesh& mesh, const std::vector<Vector>& x,
 // Displacement of every node: the prescribed one on the boundary, inside the weighted mean of
 // Luke, Collins & Blades (2012) eq. 2-3 over all boundary nodes, w_s = A_s ((L/d)^3 + (alpha
 // L/d)^5) with L the mesh extent and alpha = 0.1. With rotations, boundary node s moves the
-// point x rigidly with its wall, u_s + (R(theta_s) - I)(x - x_s) (their eq. 4), instead of by
+// point x rigidly with its wall, u_s + (R(theta_s) - I)(x - x_s), instead of by
 // u_s alone: a rigidly turning flap then turns the cells around it rigidly.
 std::vector<Vector> interpolated_displacement(const NodePositions& nodes,
                                               const BoundarySources& sources, bool rotations) {

@@ -79,8 +79,8 @@ struct DeformReport {
 };
 struct DeformOptions {
   // interpolate each wall node's rotation as well as its displacement (Luke, Collins & Blades
-  // 2012, eq. 4); false: displacements only
-  bool rotations = false;
+  // 2012); false: displacements only, as before 2026-11-27
+  bool rotations = true;
 };
 // Moves the wall nodes by the wall displacement and the rest by inverse-distance weighting (Luke,
 // Collins & Blades 2012). Wall nodes: given by node id (walldisp `node`), else interpolated along
