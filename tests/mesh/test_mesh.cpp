@@ -149,20 +149,30 @@ void write_rotation(const formats::Mesh& m, const std::string& flap, const Eigen
   w.commit();
 }
 
+// The flow mesh of a model at --scale 4 (coarse: the deformation tests).
+formats::Mesh coarse_flow_mesh(const input::Model& model) {
+  mesh::FlowMeshReport report;
+  mesh::FlowMeshOptions options;
+  options.scale = 4.0;
+  return mesh::build_flow_mesh(model, options, report, quiet());
+}
+
+Eigen::Vector2d joint_point(const input::Model& model, const std::string& name) {
+  for (const auto& j : model.joints) {
+    if (j.name == name)
+      return j.point;
+  }
+  ADD_FAILURE() << "no joint " << name;
+  return Eigen::Vector2d::Zero();
+}
+
 }  // namespace
 
 TEST(Deform, RigidTwoDegreeRotationOfOneFlapKeepsCellsValidAndWallsExact) {
   const auto model = load_case("simple-nozzle");
-  mesh::FlowMeshReport report;
-  mesh::FlowMeshOptions options;
-  options.scale = 4.0;
-  const auto m = mesh::build_flow_mesh(model, options, report, quiet());
+  const auto m = coarse_flow_mesh(model);
   const auto dir = test::scratch_dir("deform-rotation");
-  Eigen::Vector2d hinge = Eigen::Vector2d::Zero();
-  for (const auto& j : model.joints) {
-    if (j.name == "upper_23")
-      hinge = j.point;
-  }
+  const Eigen::Vector2d hinge = joint_point(model, "upper_23");
   const double angle = 2.0 * M_PI / 180.0;
   write_rotation(m, "upper_3", hinge, angle, Eigen::Vector2d::Zero(), dir / "walldisp.h5");
   const auto walls = formats::read_walldisp(dir / "walldisp.h5").walls;
@@ -225,16 +235,9 @@ TEST(Deform, RotationsTurnTheWallLayersOfATurningFlapWithIt) {
   // with the rotations interpolated too (Luke, Collins & Blades 2012) the layers turn
   // rigidly, so their areas stay what they were.
   const auto model = load_case("simple-nozzle");
-  mesh::FlowMeshReport report;
-  mesh::FlowMeshOptions options;
-  options.scale = 4.0;
-  const auto m = mesh::build_flow_mesh(model, options, report, quiet());
+  const auto m = coarse_flow_mesh(model);
   const auto dir = test::scratch_dir("deform-turn");
-  Eigen::Vector2d hinge = Eigen::Vector2d::Zero();
-  for (const auto& j : model.joints) {
-    if (j.name == "upper_23")
-      hinge = j.point;
-  }
+  const Eigen::Vector2d hinge = joint_point(model, "upper_23");
   write_rotation(m, "upper_3", hinge, 30.0 * M_PI / 180.0, Eigen::Vector2d::Zero(),
                  dir / "walldisp.h5");
   const auto walls = formats::read_walldisp(dir / "walldisp.h5").walls;
@@ -275,10 +278,7 @@ TEST(Deform, NodeSharedByTwoFlapsTakesTheMeanOfTheirDisplacements) {
   // 5 deg about a point off the joint and upper_2 held: the walldisp gives the shared nodes two
   // displacements, and each takes their mean, whichever wall is read first.
   const auto model = load_case("simple-nozzle");
-  mesh::FlowMeshReport report;
-  mesh::FlowMeshOptions options;
-  options.scale = 4.0;
-  const auto m = mesh::build_flow_mesh(model, options, report, quiet());
+  const auto m = coarse_flow_mesh(model);
   const auto dir = test::scratch_dir("deform-shared");
   const Eigen::Vector2d centre(0.6, 0.0);
   const double angle = 5.0 * M_PI / 180.0;
@@ -311,13 +311,9 @@ TEST(Deform, ModelWallDisplacementMovesTheWholeFlapIncludingItsEndFace) {
   // no end face: the mesh's wall nodes on those curves move exactly, the end face and the
   // join nodes take the nearest curve point's displacement.
   const auto model = load_case("simple-nozzle");
-  mesh::FlowMeshReport report;
-  mesh::FlowMeshOptions options;
-  options.scale = 4.0;
-  const auto m = mesh::build_flow_mesh(model, options, report, quiet());
+  const auto m = coarse_flow_mesh(model);
   const input::Flap* flap = model.find_flap("upper_3");
-  Eigen::Vector2d hinge = model.joints[1].point;
-  ASSERT_EQ(model.joints[1].name, "upper_23");
+  const Eigen::Vector2d hinge = joint_point(model, "upper_23");
   const double angle = 2.0 * M_PI / 180.0;
   const Eigen::Matrix2d rotation = Eigen::Rotation2D<double>(angle).toRotationMatrix();
   std::vector<mesh::WallDisplacement> walls;
