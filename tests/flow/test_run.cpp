@@ -11,6 +11,7 @@
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
 #include "tfmb/formats/files.hpp"
+#include "tfmb/formats/flow.hpp"
 
 using namespace tfmb;
 using namespace tfmb::flow;
@@ -127,6 +128,46 @@ TEST(FlowRun, NozzleEndToEndAndRestart) {
   EXPECT_TRUE(r2.report.converged);
   EXPECT_LT(r2.report.iterations, r.report.iterations / 2);
   EXPECT_NEAR(r2.mass_flow, r.mass_flow, 1e-4 * r.mass_flow);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(FlowRun, RestartThatDoesNotConvergeIsSolvedAgainFromTheStartState) {
+  // A restart continues the residual drop of the run it restarts (its /convergence reference).
+  // Given a reference 1e-12 of the real one, the restart cannot reach the drop within its
+  // iteration limit: with the fallback (default) the run is solved again from the start state
+  // and converges to the first run's solution; without it, it stops unconverged.
+  const auto dir = temp_dir();
+  write_flowmesh(dir / "flowmesh.h5", nparc::make_mesh(61, 16));
+  std::ostringstream log_text;
+  const Logger log("tfmb-flow", Verbosity::normal, log_text);
+  RunOptions o = nozzle_options(dir);
+  const RunResult first = run(o, log);
+  ASSERT_TRUE(first.report.converged);
+  formats::Flow unreachable = formats::read_flow(o.output);
+  ASSERT_TRUE(unreachable.convergence.residual_reference);
+  *unreachable.convergence.residual_reference *= 1e-12;
+  formats::write_flow(dir / "unreachable.h5", unreachable, {});
+
+  RunOptions again = o;
+  again.restart_file = dir / "unreachable.h5";
+  again.settings.max_iterations = 30;
+  again.output = dir / "without.h5";
+  again.restart_fallback = false;
+  const RunResult without = run(again, log);
+  EXPECT_FALSE(without.report.converged);
+  EXPECT_EQ(without.report.iterations, 30);
+
+  again.settings.max_iterations = o.settings.max_iterations;
+  again.output = dir / "with.h5";
+  again.restart_fallback = true;
+  log_text.str("");
+  const RunResult with = run(again, log);
+  EXPECT_TRUE(with.report.converged);
+  EXPECT_NE(log_text.str().find("did not converge in 400 iterations"), std::string::npos)
+      << log_text.str();
+  EXPECT_NE(log_text.str().find("solving again from the start state"), std::string::npos);
+  EXPECT_EQ(with.report.iterations, first.report.iterations) << "the first run's solve, again";
+  EXPECT_NEAR(with.mass_flow, first.mass_flow, 1e-9 * first.mass_flow);
   std::filesystem::remove_all(dir);
 }
 

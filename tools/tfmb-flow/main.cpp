@@ -99,6 +99,9 @@ int main(int argc, char** argv) {
             "Newton-Krylov from the iteration on which it is frozen (--limiter-freeze-drop, "
             "--limiter-stall-iterations)",
             CLI::IsMember({"false", "true", "auto"}));
+  table.add_flag("--restart-fallback,!--no-restart-fallback", o.restart_fallback,
+                 "a steady solve from --restart that does not converge is solved again from the "
+                 "start state, as without --restart (logged)");
   table.add("--restart-limiter", o.restart_limiter, "",
             "second order from --restart: live: the limiter evaluated every iteration; "
             "frozen: held at the restart state's values from the first iteration (with "

@@ -114,6 +114,7 @@ class FlowStage {
               o.ambient_pressure} {}
 
   RunResult run() {
+    from_restart = o.restart_file.has_value();
     map_boundaries();
     configure();
     start();
@@ -221,7 +222,7 @@ class FlowStage {
     const double c_ref = std::sqrt(o.gamma * o.gas_constant * t_ref);
     settings.reference_state = {rho_ref, c_ref, c_ref, p_ref};
 
-    if (o.restart_file)
+    if (from_restart)
       restart = read_restart(*o.restart_file, lm);
     if (restart && settings.residual_reference <= 0.0 && restart->convergence.residual_reference) {
       // continue the residual drop of the run being restarted
@@ -232,7 +233,7 @@ class FlowStage {
     const double m2 = o.freestream_mach * o.freestream_mach;
     const double freestream_total_pressure =
         o.ambient_pressure * std::pow(1.0 + 0.5 * (o.gamma - 1.0) * m2, o.gamma / (o.gamma - 1.0));
-    if (has_inflow && !o.restart_file) {
+    if (has_inflow && !from_restart) {
       // A jet started from the free stream: open the valve over the first iterations (see
       // SolverSettings::inflow_ramp_iterations) when there is something to open, i.e. the inflow
       // total pressure is above the free stream's (by more than 0.1 %: the TMR plate's p0 is the
@@ -258,7 +259,7 @@ class FlowStage {
     };
     solver_ = std::make_unique<FlowSolver>(lm.mesh, lm.geometry, gas, bcs, settings);
     FlowSolver& solver = *solver_;
-    if (o.restart_file) {
+    if (from_restart) {
       solver.set_primitive(primitive_states(*restart));
       if (sst_model) {
         if (!restart->turbulent_kinetic_energy.empty() &&
@@ -315,11 +316,31 @@ class FlowStage {
   void solve() {
     if (o.time.time_step > 0.0) {
       solve_time_accurate();
-    } else if (o.first_order_start && settings.order >= 2 && !o.restart_file) {
+    } else if (o.first_order_start && settings.order >= 2 && !from_restart) {
       solve_with_first_order_start();
     } else {
       result.report = solve_showing_progress(*solver_, "steady solve", settings.max_iterations);
+      if (from_restart && !result.report.converged && o.restart_fallback)
+        solve_again_from_the_start_state();
     }
+  }
+
+  // A restart that did not converge, solved again as if there were no restart file: from the
+  // uniform or internal-flow start state, with the first-order start if it is on. Why: a coupling
+  // iterate whose walls moved far from the state it restarts from can be out of reach of that
+  // state (config2's dynamic exchange with the sliding mount: between exchanges 4 and 5 the
+  // trailing edge swung 268 mm, and the restart diverged, its CFL number collapsing after 1,189
+  // iterations). The report is the second solve's; the log says what the first did.
+  void solve_again_from_the_start_state() {
+    const SolveReport failed = result.report;
+    log.warn("the restart from " + o.restart_file->string() + " did not converge in " +
+             std::to_string(failed.iterations) + " iterations (" + failed.stop_reason +
+             "); solving again from the start state");
+    from_restart = false;
+    restart.reset();
+    configure();
+    start();
+    solve();
   }
 
   // solver.solve() with a progress line for it; a solve stops at its iteration limit at the
@@ -772,6 +793,7 @@ class FlowStage {
   SolverSettings settings;
   double p_ref = 0.0;
   std::optional<formats::Flow> restart;
+  bool from_restart = false;  // the solve starts from the restart file's state
   std::unique_ptr<FlowSolver> solver_;
   Progress* progress_ = nullptr;  // of the solve under way, if any
   RunResult result;

@@ -52,6 +52,10 @@ struct RunOptions {
   // does, so a restart from a first-order state keeps it live (NPARC 61 x 16 from a first-order
   // state: mass flow 0.07 % off the second-order one with it frozen there).
   std::string restart_limiter = "live";            // live | frozen
+  // A steady solve from --restart that does not converge is solved again from the start state
+  // (as without --restart, first-order start included), so that a coupling iterate whose walls
+  // moved far from the restart state is not lost to that state.
+  bool restart_fallback = true;
   std::string turbulence_coupling = "segregated";  // segregated | coupled | auto (SA)
   std::string matrix_free = "auto";                // false | true | auto (second order)
   std::string turbulence_jacobian = "exact";       // exact | m-matrix (SA's own linearisation)
