@@ -330,7 +330,8 @@ class FlowStage {
   // iterate whose walls moved far from the state it restarts from can be out of reach of that
   // state (config2's dynamic exchange with the sliding mount: between exchanges 4 and 5 the
   // trailing edge swung 268 mm, and the restart diverged, its CFL number collapsing after 1,189
-  // iterations). The report is the second solve's; the log says what the first did.
+  // iterations; that geometry did not settle from the start state either, README "Restart").
+  // The report is the second solve's; the log says what the first did.
   void solve_again_from_the_start_state() {
     const SolveReport failed = result.report;
     log.warn("the restart from " + o.restart_file->string() + " did not converge in " +
