@@ -60,7 +60,6 @@ class NodeMotions {
     sum.rotation += rotation;
     ++sum.count;
   }
-  bool has(std::int64_t node) const { return sums_.count(node) > 0; }
   void put_into(BoundarySources& sources) const {
     for (const auto& [node, sum] : sums_) {
       sources.prescribed[node] = sum.u / sum.count;
@@ -170,8 +169,15 @@ double interpolate_along(const WallDisplacement& w, const Vector& p, Vector& u, 
     if (d < best) {
       best = d;
       u = (1 - t) * w.displacement[s] + t * w.displacement[s + 1];
-      rotation = turn_angle(w.x0[s + 1] - w.x0[s],
-                            w.x0[s + 1] + w.displacement[s + 1] - w.x0[s] - w.displacement[s]);
+      // at a curve point, the turn a walldisp with node ids gives that point (the same file
+      // with and without the ids deforms alike); between points, the segment's
+      constexpr double kAtPoint = 1e-9;
+      rotation = t <= kAtPoint       ? curve_rotation_at(w, s)
+                 : t >= 1 - kAtPoint ? curve_rotation_at(w, s + 1)
+                                     : turn_angle(w.x0[s + 1] - w.x0[s], w.x0[s + 1] +
+                                                                             w.displacement[s + 1] -
+                                                                             w.x0[s] -
+                                                                             w.displacement[s]);
     }
   }
   return best;
@@ -234,12 +240,12 @@ WallCurves curves_of_wall(const std::string& name, const formats::Boundary& wall
 // wall's length they take the nearest curve point's displacement (counted in the report).
 void prescribe_wall(const std::string& name, const formats::Boundary& wall,
                     const WallCurves& curves, double wall_length, const NodePositions& nodes,
-                    const NodeMotions& named, NodeMotions& motions, DeformReport& report) {
+                    NodeMotions& motions, DeformReport& report) {
   std::set<std::int64_t> done;  // each node once per wall (it ends two of its edges)
   for (Eigen::Index e = 0; e < wall.edges.rows(); ++e) {
     for (int k = 0; k < 2; ++k) {
       const std::int64_t node = wall.edges(e, k);
-      if (named.has(node) || !done.insert(node).second)
+      if (!done.insert(node).second)
         continue;
       const Vector& p = nodes.x[static_cast<std::size_t>(node)];
       Vector u = Vector::Zero();
@@ -269,18 +275,22 @@ void prescribe_wall(const std::string& name, const formats::Boundary& wall,
 // Flap wall boundaries of the mesh: interpolated along the walldisp curve of the same name, or
 // projected onto the curves of the same flap.
 void prescribe_walls(const Mesh& mesh, const std::vector<WallDisplacement>& walls,
-                     const NodePositions& nodes, const NodeMotions& named, NodeMotions& motions,
-                     DeformReport& report) {
+                     const NodePositions& nodes, NodeMotions& motions, DeformReport& report) {
   report.projected_nodes = 0;
   report.largest_projection = 0.0;
+  std::set<std::string> named_walls;  // their nodes came with the walldisp
+  for (const auto& w : walls) {
+    if (!w.nodes.empty())
+      named_walls.insert(w.name);
+  }
   for (const auto& [name, wall] : mesh.boundaries) {
-    if (!is_wall(wall))
+    if (!is_wall(wall) || named_walls.count(name))
       continue;
     const WallCurves curves = curves_of_wall(name, wall, walls);
     if (curves.same_name.empty() && curves.same_flap.empty())
       continue;
     const double wall_length = flap_wall_length(mesh, name, wall, nodes.x);
-    prescribe_wall(name, wall, curves, wall_length, nodes, named, motions, report);
+    prescribe_wall(name, wall, curves, wall_length, nodes, motions, report);
   }
 }
 
@@ -412,12 +422,12 @@ Mesh deform_mesh(const Mesh& mesh, const std::vector<WallDisplacement>& walls,
                  const DeformOptions& options, DeformReport& report) {
   const NodePositions nodes = node_positions(mesh);
   BoundarySources sources;
-  NodeMotions named, by_curve;
-  prescribe_named_nodes(walls, nodes, named);
+  // a node gets the mean of what every wall it is on gives, by node id or along a curve
+  NodeMotions motions;
+  prescribe_named_nodes(walls, nodes, motions);
   check_wall_names(mesh, walls);
-  prescribe_walls(mesh, walls, nodes, named, by_curve, report);
-  named.put_into(sources);
-  by_curve.put_into(sources);
+  prescribe_walls(mesh, walls, nodes, motions, report);
+  motions.put_into(sources);
   hold_other_boundaries(mesh, nodes.x, sources);
   report.moved_wall_nodes = 0;
   for (const auto& [node, u] : sources.prescribed)
