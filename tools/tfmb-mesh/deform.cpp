@@ -81,15 +81,18 @@ double turn_angle(const Vector& a, const Vector& b) {
   return std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));
 }
 
+// [rad] the turn of the chord from point a to point b of a walldisp curve
+double chord_turn(const WallDisplacement& w, std::size_t a, std::size_t b) {
+  return turn_angle(w.x0[b] - w.x0[a], w.x0[b] + w.displacement[b] - w.x0[a] - w.displacement[a]);
+}
+
 // The turn of a walldisp curve at its point k: of the chord through its neighbours (one-sided at
 // the ends); 0 for a single point.
 double curve_rotation_at(const WallDisplacement& w, std::size_t k) {
   const std::size_t n = w.x0.size();
   if (n < 2)
     return 0.0;
-  const std::size_t a = k > 0 ? k - 1 : 0;
-  const std::size_t b = std::min(k + 1, n - 1);
-  return turn_angle(w.x0[b] - w.x0[a], w.x0[b] + w.displacement[b] - w.x0[a] - w.displacement[a]);
+  return chord_turn(w, k > 0 ? k - 1 : 0, std::min(k + 1, n - 1));
 }
 
 // The mesh nodes before the deformation and the diagonal of their bounding box (the length
@@ -174,10 +177,7 @@ double interpolate_along(const WallDisplacement& w, const Vector& p, Vector& u, 
       constexpr double kAtPoint = 1e-9;
       rotation = t <= kAtPoint       ? curve_rotation_at(w, s)
                  : t >= 1 - kAtPoint ? curve_rotation_at(w, s + 1)
-                                     : turn_angle(w.x0[s + 1] - w.x0[s], w.x0[s + 1] +
-                                                                             w.displacement[s + 1] -
-                                                                             w.x0[s] -
-                                                                             w.displacement[s]);
+                                     : chord_turn(w, s, s + 1);
     }
   }
   return best;
