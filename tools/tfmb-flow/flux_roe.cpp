@@ -2,31 +2,44 @@
 
 #include <algorithm>
 
+#include "tfmb/common/dual.hpp"
+
 namespace tfmb::flow {
 
 namespace {
 
+// The flux below is written once on its scalar type T: double for the flux, Dual<8> for its
+// exact derivative with respect to both sides' conservative variables.
+template <class T>
+using StateOf = std::array<T, 4>;
+
+template <class T>
 struct RoeAverage {
-  double rho, u, v, h, c, vn, q2;
-  double nx, ny;                 // unit normal
-  double abs_l1, abs_l2, abs_l3; // |V-c|, |V|, |V+c| after the entropy fix
+  T rho, u, v, h, c, vn, q2;
+  double nx, ny;             // unit normal
+  T abs_l1, abs_l2, abs_l3;  // |V-c|, |V|, |V+c| after the entropy fix
 };
 
 // Harten's smoothing of |lambda| near zero (Blazek 2015, eq. 4.93).
-inline double harten(double lambda, double delta) {
-  const double a = std::abs(lambda);
+template <class T>
+T harten(const T& lambda, const T& delta) {
+  using std::abs;
+  const T a = abs(lambda);
   return a >= delta ? a : 0.5 * (lambda * lambda + delta * delta) / delta;
 }
 
 // |A_Roe| times a jump given as primitive increments (Blazek 2015, eqs. 4.90-4.92). Scaled by the
-// face length outside.
-inline State dissipation(const RoeAverage& r, double drho, double du, double dv, double dp) {
-  const double dvn = r.nx * du + r.ny * dv;
-  const double c2 = r.c * r.c;
-  const double a1 = r.abs_l1 * (dp - r.rho * r.c * dvn) / (2.0 * c2);
-  const double a3 = r.abs_l3 * (dp + r.rho * r.c * dvn) / (2.0 * c2);
-  const double a2 = r.abs_l2 * (drho - dp / c2);
-  const double a2r = r.abs_l2 * r.rho;
+// face length outside. R is the Roe state's scalar, J the jump's (a frozen |A_Roe| applied to a
+// double jump, or the whole product differentiated).
+template <class R, class J>
+StateOf<J> dissipation(const RoeAverage<R>& r, const J& drho, const J& du, const J& dv,
+                       const J& dp) {
+  const J dvn = r.nx * du + r.ny * dv;
+  const R c2 = r.c * r.c;
+  const J a1 = r.abs_l1 * (dp - r.rho * r.c * dvn) / (2.0 * c2);
+  const J a3 = r.abs_l3 * (dp + r.rho * r.c * dvn) / (2.0 * c2);
+  const J a2 = r.abs_l2 * (drho - dp / c2);
+  const R a2r = r.abs_l2 * r.rho;
   return {a1 + a2 + a3,
           a1 * (r.u - r.c * r.nx) + a2 * r.u + a2r * (du - r.nx * dvn) + a3 * (r.u + r.c * r.nx),
           a1 * (r.v - r.c * r.ny) + a2 * r.v + a2r * (dv - r.ny * dvn) + a3 * (r.v + r.c * r.ny),
@@ -34,39 +47,81 @@ inline State dissipation(const RoeAverage& r, double drho, double du, double dv,
               a3 * (r.h + r.c * r.vn)};
 }
 
-}  // namespace
+template <class T>
+T total_enthalpy(const PerfectGas& gas, const StateOf<T>& w) {
+  return gas.gamma / (gas.gamma - 1.0) * w[3] / w[0] + 0.5 * (w[1] * w[1] + w[2] * w[2]);
+}
 
-State roe_flux(const PerfectGas& gas, const State& wl, const State& wr, double nx, double ny,
-               double entropy_fix, RoeFluxJacobians* jac) {
+template <class T>
+StateOf<T> euler_flux_of(const PerfectGas& gas, const StateOf<T>& w, double nx, double ny) {
+  const T vn = w[1] * nx + w[2] * ny;
+  const T m = w[0] * vn;
+  return {m, m * w[1] + w[3] * nx, m * w[2] + w[3] * ny, m * total_enthalpy(gas, w)};
+}
+
+// Roe averages (Blazek 2015, eq. 4.89) and the smoothed eigenvalues at the unit normal.
+template <class T>
+RoeAverage<T> roe_average(const PerfectGas& gas, const StateOf<T>& wl, const StateOf<T>& wr,
+                          double nx, double ny, double entropy_fix) {
+  using std::sqrt;
   const double s = std::sqrt(nx * nx + ny * ny);
-  RoeAverage r;
+  RoeAverage<T> r;
   r.nx = nx / s;
   r.ny = ny / s;
-  // Roe averages (Blazek 2015, eq. 4.89)
-  const double sl = std::sqrt(wl[0]);
-  const double sr = std::sqrt(wr[0]);
-  const double wgt = 1.0 / (sl + sr);
-  const double hl = gas.total_enthalpy(wl);
-  const double hr = gas.total_enthalpy(wr);
+  const T sl = sqrt(wl[0]);
+  const T sr = sqrt(wr[0]);
+  const T wgt = 1.0 / (sl + sr);
+  const T hl = total_enthalpy(gas, wl);
+  const T hr = total_enthalpy(gas, wr);
   r.rho = sl * sr;
   r.u = (sl * wl[1] + sr * wr[1]) * wgt;
   r.v = (sl * wl[2] + sr * wr[2]) * wgt;
   r.h = (sl * hl + sr * hr) * wgt;
   r.q2 = r.u * r.u + r.v * r.v;
-  r.c = std::sqrt(std::max((gas.gamma - 1.0) * (r.h - 0.5 * r.q2), 1e-12 * r.h));
+  const T c2 = (gas.gamma - 1.0) * (r.h - 0.5 * r.q2);
+  const T c2_floor = 1e-12 * r.h;
+  r.c = sqrt(c2 > c2_floor ? c2 : c2_floor);
   r.vn = r.u * r.nx + r.v * r.ny;
-  const double delta = entropy_fix * r.c;
-  r.abs_l1 = harten(r.vn - r.c, delta);
-  r.abs_l2 = harten(r.vn, delta);
-  r.abs_l3 = harten(r.vn + r.c, delta);
+  const T delta = entropy_fix * r.c;
+  r.abs_l1 = harten<T>(r.vn - r.c, delta);
+  r.abs_l2 = harten<T>(r.vn, delta);
+  r.abs_l3 = harten<T>(r.vn + r.c, delta);
+  return r;
+}
 
-  const State fl = euler_flux(gas, wl, nx, ny);
-  const State fr = euler_flux(gas, wr, nx, ny);
-  const State d = dissipation(r, wr[0] - wl[0], wr[1] - wl[1], wr[2] - wl[2], wr[3] - wl[3]);
-  State f;
-  for (int k = 0; k < 4; ++k) f[k] = 0.5 * (fl[k] + fr[k] - s * d[k]);
+template <class T>
+StateOf<T> roe_flux_of(const PerfectGas& gas, const StateOf<T>& wl, const StateOf<T>& wr, double nx,
+                       double ny, double entropy_fix, RoeAverage<T>* average = nullptr) {
+  const double s = std::sqrt(nx * nx + ny * ny);
+  const RoeAverage<T> r = roe_average(gas, wl, wr, nx, ny, entropy_fix);
+  const StateOf<T> fl = euler_flux_of(gas, wl, nx, ny);
+  const StateOf<T> fr = euler_flux_of(gas, wr, nx, ny);
+  const StateOf<T> d =
+      dissipation<T, T>(r, wr[0] - wl[0], wr[1] - wl[1], wr[2] - wl[2], wr[3] - wl[3]);
+  StateOf<T> f;
+  for (int k = 0; k < 4; ++k)
+    f[k] = 0.5 * (fl[k] + fr[k] - s * d[k]);
+  if (average)
+    *average = r;
+  return f;
+}
 
+// Primitive variables of conservative ones, on any scalar (PerfectGas::primitive on doubles).
+template <class T>
+StateOf<T> primitive_of(const PerfectGas& gas, const StateOf<T>& u) {
+  const T vx = u[1] / u[0];
+  const T vy = u[2] / u[0];
+  return {u[0], vx, vy, (gas.gamma - 1.0) * (u[3] - 0.5 * u[0] * (vx * vx + vy * vy))};
+}
+
+}  // namespace
+
+State roe_flux(const PerfectGas& gas, const State& wl, const State& wr, double nx, double ny,
+               double entropy_fix, RoeFluxJacobians* jac) {
+  RoeAverage<double> r;
+  const State f = roe_flux_of<double>(gas, wl, wr, nx, ny, entropy_fix, &r);
   if (jac) {
+    const double s = std::sqrt(nx * nx + ny * ny);
     // Columns of |A_Roe|: the jump e_k in conservative variables, linearised at the Roe state.
     Block abs_a;
     const double g1 = gas.gamma - 1.0;
@@ -79,8 +134,9 @@ State roe_flux(const PerfectGas& gas, const State& wl, const State& wr, double n
       const double du = (du1 - r.u * du0) / r.rho;
       const double dv = (du2 - r.v * du0) / r.rho;
       const double dp = g1 * (du3 - r.u * du1 - r.v * du2 + 0.5 * r.q2 * du0);
-      const State col = dissipation(r, drho, du, dv, dp);
-      for (int row = 0; row < 4; ++row) abs_a[row * 4 + k] = s * col[row];
+      const State col = dissipation<double, double>(r, drho, du, dv, dp);
+      for (int row = 0; row < 4; ++row)
+        abs_a[row * 4 + k] = s * col[row];
     }
     const Block al = euler_flux_jacobian(gas, wl, nx, ny);
     const Block ar = euler_flux_jacobian(gas, wr, nx, ny);
@@ -90,6 +146,29 @@ State roe_flux(const PerfectGas& gas, const State& wl, const State& wr, double n
     }
   }
   return f;
+}
+
+State roe_flux_exact(const PerfectGas& gas, const State& wl, const State& wr, double nx, double ny,
+                     double entropy_fix, RoeFluxJacobians& jac) {
+  using D = Dual<8>;
+  const State ul = gas.conservative(wl);
+  const State ur = gas.conservative(wr);
+  StateOf<D> ul_d, ur_d;
+  for (int k = 0; k < 4; ++k) {
+    ul_d[k] = D::variable(k, ul[k]);
+    ur_d[k] = D::variable(4 + k, ur[k]);
+  }
+  const StateOf<D> f =
+      roe_flux_of<D>(gas, primitive_of(gas, ul_d), primitive_of(gas, ur_d), nx, ny, entropy_fix);
+  State value;
+  for (int row = 0; row < 4; ++row) {
+    value[row] = f[row].v;
+    for (int c = 0; c < 4; ++c) {
+      jac.d_left[4 * row + c] = f[row].d[c];
+      jac.d_right[4 * row + c] = f[row].d[4 + c];
+    }
+  }
+  return value;
 }
 
 }  // namespace tfmb::flow

@@ -7,7 +7,7 @@
 namespace tfmb::flow {
 
 struct RoeFluxJacobians {
-  Block d_left;   // d F / d U_left, frozen dissipation matrix
+  Block d_left;   // d F / d U_left
   Block d_right;  // d F / d U_right
 };
 
@@ -18,5 +18,12 @@ struct RoeFluxJacobians {
 // dissipation matrix |A_Roe| held fixed (the usual first-order implicit operator).
 State roe_flux(const PerfectGas& gas, const State& w_left, const State& w_right, double nx, double ny,
                double entropy_fix, RoeFluxJacobians* jacobians = nullptr);
+
+// The same flux and its exact derivatives with respect to both sides' conservative variables,
+// the dissipation matrix's own dependence and the entropy fix's included (forward automatic
+// differentiation, tfmb/common/dual.hpp). Frozen |A_Roe| misses that dependence, which matters
+// where an eigenvalue changes sign: at sonic points and stagnation lines.
+State roe_flux_exact(const PerfectGas& gas, const State& w_left, const State& w_right, double nx,
+                     double ny, double entropy_fix, RoeFluxJacobians& jacobians);
 
 }  // namespace tfmb::flow

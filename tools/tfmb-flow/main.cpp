@@ -180,9 +180,13 @@ int main(int argc, char** argv) {
             "far-field faces: roe (Roe flux against the free stream, differentiable: converges on "
             "jets into air at rest) or riemann (boundary state from the 1D Riemann invariants)",
             CLI::IsMember({"roe", "riemann"}));
-  table.add_flag("--exact-jacobian", o.settings.exact_jacobian,
-                 "first-order Roe Jacobian by finite differences (dissipation included) instead of "
-                 "frozen dissipation");
+  table.add("--roe-jacobian", o.roe_jacobian, "",
+            "Roe flux in the assembled Jacobian: exact-first-order (its exact derivative, "
+            "dissipation matrix included, in the steps of the first-order residual: --order 1 "
+            "and the first-order start; the dissipation matrix frozen in second-order steps), "
+            "exact (exact in every step) or frozen (dissipation matrix frozen in every step)",
+            CLI::IsMember({"exact-first-order", "exact", "frozen"}));
+  table.add_flag("--exact-jacobian", o.exact_jacobian, "the same as --roe-jacobian exact");
   table.add("--stationary-tolerance", o.settings.stationary_tolerance, "1",
             "also converged when every wall pressure (relative to p0) and the wall pressure force "
             "change by less than this per iteration, --stationary-iterations times in a row (0: "

@@ -135,6 +135,10 @@ class FlowStage {
     require(o.model == "euler" || o.model == "laminar" || o.model == "sa" ||
                 o.model == "sa-noft2" || o.model == "sst" || o.model == "sst-v",
             "--model must be euler, laminar, sa, sa-noft2, sst or sst-v, got '" + o.model + "'");
+    require(
+        o.roe_jacobian == "exact-first-order" || o.roe_jacobian == "exact" ||
+            o.roe_jacobian == "frozen",
+        "--roe-jacobian must be exact-first-order, exact or frozen, got '" + o.roe_jacobian + "'");
     require(o.farfield_flux == "roe" || o.farfield_flux == "riemann",
             "--farfield-flux must be roe or riemann, got '" + o.farfield_flux + "'");
   }
@@ -203,6 +207,9 @@ class FlowStage {
         sst_model ? TurbulenceModel::sst : TurbulenceModel::spalart_allmaras;
     settings.sst_variant = o.model == "sst-v" ? sst::Variant::sst_v : sst::Variant::sst2003;
     settings.sa_exact_jacobian = o.turbulence_jacobian == "exact";
+    settings.roe_jacobian = o.exact_jacobian || o.roe_jacobian == "exact" ? RoeJacobian::exact
+                            : o.roe_jacobian == "frozen"                  ? RoeJacobian::frozen
+                                                         : RoeJacobian::exact_first_order;
     settings.matrix_free = o.matrix_free == "true"   ? MatrixFree::on
                            : o.matrix_free == "auto" ? MatrixFree::after_limiter_freeze
                                                      : MatrixFree::off;

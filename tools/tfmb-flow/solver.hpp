@@ -33,6 +33,8 @@ enum class MatrixFree {
   after_limiter_freeze,
 };
 
+enum class RoeJacobian { frozen, exact_first_order, exact };
+
 struct SolverSettings {
   int order = 2;             // 1 or 2 (spatial accuracy of the convective fluxes)
   double entropy_fix = 0.1;  // Harten delta as a fraction of the sound speed
@@ -127,9 +129,13 @@ struct SolverSettings {
   double max_turbulence_update = 1.0;
   // Fraction of nodes whose update may be relaxed without slowing the CFL ramp.
   double relaxed_fraction_tolerated = 0.002;
-  // First-order Jacobian of the Roe flux: frozen dissipation (default) or by finite differences
-  // of the full Roe flux, dissipation included (twice the assembly cost).
-  bool exact_jacobian = false;
+  // Jacobian of the Roe flux in the assembled operator: the exact derivative of the first-order
+  // flux (forward AD, |A_Roe|'s own dependence included) or the dissipation matrix held fixed.
+  // exact_first_order: exact in the steps of the first-order residual (--order 1 and the
+  // first-order start), where it is that residual's Newton Jacobian; frozen in second-order
+  // steps, where it only preconditions or stands in for the second-order operator, and defect
+  // correction with the exact one diverged at NPARC's shock (README, Roe Jacobian).
+  RoeJacobian roe_jacobian = RoeJacobian::exact_first_order;
   int print_every = 0;  // residual line on stderr every N iterations (0: silent)
   // Called after every iteration with its number, after any residual line (the tool's progress
   // display); reads nothing of the solution and changes nothing.
@@ -199,6 +205,9 @@ struct SolveReport {
   int newton_from = 0;  // MatrixFree::after_limiter_freeze: first Newton-Krylov iteration (0: none)
   int newton_fallbacks = 0;  // ... and its Newton phases abandoned for defect correction
   int best_state_restarts = 0;  // returns to the best state after the march diverged
+  // exact Roe Jacobian: the iteration whose failed linear solve switched to the frozen one (0:
+  // none)
+  int roe_jacobian_frozen_from = 0;
   // A run that did not converge: why it stopped, where the density residual per volume was
   // largest at the end, and where the last update was relaxed most (and by how much).
   std::string stop_reason;
@@ -318,6 +327,7 @@ class FlowSolver {
  private:
   void compute_residual(bool update_limiter);  // evaluate_residual, counted and timed
   void evaluate_residual(bool update_limiter);
+  bool exact_roe_jacobian_by_settings() const;
   void assemble_jacobian(const std::vector<double>& diag_scale);
   // V a0 / dt of the physical time derivative at node i (0 for a steady solve)
   double physical_time_diagonal(int i) const {
@@ -448,6 +458,9 @@ class FlowSolver {
   ScalarIlu0 sa_ilu_;
   GmresWorkspace gmres_workspace_;
   bool limiter_frozen_ = false;
+  // The Roe flux's exact derivative in this solve's assembled Jacobian (settings_.roe_jacobian
+  // for its order); false from the first failed linear solve on (accept_or_reject_step).
+  bool exact_roe_jacobian_ = false;
   bool hold_limiter_ = false;  // see hold_limiter()
   bool release_held_limiter_ = false;
   bool limiter_stale_ = true;  // phi_ not yet evaluated on the current state (set_primitive)
