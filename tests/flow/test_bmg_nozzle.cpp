@@ -263,6 +263,10 @@ ViscousRun run_viscous(int ni, int nj, double dy1, int order, int max_iterations
     s.sa_exact_jacobian = std::atoi(c) != 0;
   if (const char* c = std::getenv("BMG_ILU_FILL"))
     s.ilu_fill_level = std::atoi(c);
+  if (const char* c = std::getenv("BMG_ROE_JACOBIAN"))  // 0 frozen, 1 exact-first-order, 2 exact
+    s.roe_jacobian = std::atoi(c) == 0   ? RoeJacobian::frozen
+                     : std::atoi(c) == 1 ? RoeJacobian::exact_first_order
+                                         : RoeJacobian::exact;
   if (const char* c = std::getenv("BMG_CFL_MAX"))  // --cfl-max
     s.cfl_max = std::atof(c);
   // BMG_MATRIX_FREE=2: --matrix-free auto; BMG_FIRST_DROP: end the first-order stage at this

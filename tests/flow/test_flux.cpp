@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include "tfmb-flow/flux_roe.hpp"
 
 using namespace tfmb::flow;
@@ -133,6 +135,10 @@ TEST(RoeFlux, ExactJacobianMatchesCentralDifferencesWhereFrozenDissipationDoesNo
           largest_difference(right ? exact.d_right : exact.d_left, fd, &unused);
       const double frozen_error =
           largest_difference(right ? frozen.d_right : frozen.d_left, fd, &unused);
+      std::printf(
+          "%-10s %-5s: largest difference from central differences, exact %.1e, frozen "
+          "%.1e (of the largest entry)\n",
+          k.name, right ? "right" : "left", exact_error / scale, frozen_error / scale);
       EXPECT_LT(exact_error, 1e-6 * scale) << k.name << (right ? " right" : " left");
       // the frozen dissipation matrix is only the derivative of the flux for a vanishing jump
       EXPECT_GT(frozen_error, 1e3 * exact_error) << k.name << (right ? " right" : " left");

@@ -181,11 +181,12 @@ int main(int argc, char** argv) {
             "jets into air at rest) or riemann (boundary state from the 1D Riemann invariants)",
             CLI::IsMember({"roe", "riemann"}));
   table.add("--roe-jacobian", o.roe_jacobian, "",
-            "Roe flux in the assembled Jacobian: exact-first-order (its exact derivative, "
-            "dissipation matrix included, in the steps of the first-order residual: --order 1 "
-            "and the first-order start; the dissipation matrix frozen in second-order steps), "
-            "exact (exact in every step) or frozen (dissipation matrix frozen in every step)",
-            CLI::IsMember({"exact-first-order", "exact", "frozen"}));
+            "Roe flux in the assembled Jacobian: frozen (its dissipation matrix held fixed), "
+            "exact-first-order (its exact derivative, dissipation matrix included, in the steps "
+            "of the first-order residual: --order 1 and the first-order start; frozen in "
+            "second-order steps) or exact (exact in every step); a failed linear solve with "
+            "the exact one switches to the frozen one",
+            CLI::IsMember({"frozen", "exact-first-order", "exact"}));
   table.add_flag("--exact-jacobian", o.exact_jacobian, "the same as --roe-jacobian exact");
   table.add("--stationary-tolerance", o.settings.stationary_tolerance, "1",
             "also converged when every wall pressure (relative to p0) and the wall pressure force "

@@ -59,7 +59,7 @@ struct RunOptions {
   std::string turbulence_coupling = "segregated";  // segregated | coupled | auto (SA)
   std::string matrix_free = "auto";                // false | true | auto (second order)
   std::string turbulence_jacobian = "exact";       // exact | m-matrix (SA's own linearisation)
-  std::string roe_jacobian = "exact-first-order";  // exact-first-order | exact | frozen
+  std::string roe_jacobian = "frozen";             // frozen | exact-first-order | exact
   bool exact_jacobian = false;                     // --exact-jacobian: --roe-jacobian exact
   // Time-accurate run (dual time stepping) when time.time_step > 0: from the restart (or the
   // initial) state, no steady solve; flow.h5 then holds the time averages.
