@@ -16,6 +16,13 @@ const PerfectGas kAir{1.4, 287.05};
 constexpr int kNi = 81;
 constexpr int kNj = 21;
 
+// Uniform start at M = 0.2 with the inlet's total conditions (rest-like, subsonic everywhere).
+State low_speed_start() {
+  const double t = nparc::kT0 / (1.0 + 0.2 * 0.04);
+  const double p = nparc::kP0 * std::pow(t / nparc::kT0, 3.5);
+  return {p / (kAir.R * t), 0.2 * std::sqrt(1.4 * kAir.R * t), 0.0, p};
+}
+
 struct NozzleRun {
   SolveReport report;
   double mass_flow_error;  // relative
@@ -30,9 +37,7 @@ NozzleRun run_nozzle(double pe, MatrixFree steps = SolverSettings{}.matrix_free)
   s.matrix_free = steps;
   FlowSolver solver(nparc::make_mesh(kNi, kNj), Geometry::planar, kAir,
                     nparc::boundary_conditions(pe), s);
-  const double t = nparc::kT0 / (1.0 + 0.2 * 0.04);  // start at rest-like M = 0.2
-  const double p = nparc::kP0 * std::pow(t / nparc::kT0, 3.5);
-  solver.set_uniform({p / (kAir.R * t), 0.2 * std::sqrt(1.4 * kAir.R * t), 0.0, p});
+  solver.set_uniform(low_speed_start());
   NozzleRun r;
   r.report = solver.solve();
   const Quasi1dNozzle exact(nparc::area_in, 0.0, 5.0, 10.0, kAir.gamma, pe);
@@ -131,9 +136,7 @@ TEST(NparcNozzle, NewtonStepsAfterTheLimiterFreezeReachTheDefectCorrectionSoluti
   s.residual_drop = 1e-3;
   s.residual_drop_at_cfl_ceiling = true;
   FlowSolver first(mesh, Geometry::planar, kAir, bcs, s);
-  const double t = nparc::kT0 / (1.0 + 0.2 * 0.04);
-  const double p = nparc::kP0 * std::pow(t / nparc::kT0, 3.5);
-  first.set_uniform({p / (kAir.R * t), 0.2 * std::sqrt(1.4 * kAir.R * t), 0.0, p});
+  first.set_uniform(low_speed_start());
   const SolveReport start = first.solve();
   ASSERT_TRUE(start.converged);
   struct Second {
@@ -192,9 +195,7 @@ TEST(NparcNozzle, ExactRoeJacobianConvergesTheFirstOrderSchemeInFewerIterations)
       s.residual_drop = 1e-8;
       s.roe_jacobian = jacobian;
       FlowSolver solver(mesh, Geometry::planar, kAir, bcs, s);
-      const double t = nparc::kT0 / (1.0 + 0.2 * 0.04);
-      const double p = nparc::kP0 * std::pow(t / nparc::kT0, 3.5);
-      solver.set_uniform({p / (kAir.R * t), 0.2 * std::sqrt(1.4 * kAir.R * t), 0.0, p});
+      solver.set_uniform(low_speed_start());
       const SolveReport report = solver.solve();
       return std::make_pair(report, solver.primitive());
     };
@@ -232,9 +233,7 @@ TEST(NparcNozzle, FailedLinearSolveSwitchesToTheFrozenRoeJacobian) {
     s.gmres_max_iterations = 1;
     s.roe_jacobian = jacobian;
     FlowSolver solver(mesh, Geometry::planar, kAir, nparc::boundary_conditions(0.75), s);
-    const double t = nparc::kT0 / (1.0 + 0.2 * 0.04);
-    const double p = nparc::kP0 * std::pow(t / nparc::kT0, 3.5);
-    solver.set_uniform({p / (kAir.R * t), 0.2 * std::sqrt(1.4 * kAir.R * t), 0.0, p});
+    solver.set_uniform(low_speed_start());
     return solver.solve();
   };
   const SolveReport exact = run(RoeJacobian::exact_first_order);
