@@ -132,10 +132,11 @@ struct SolverSettings {
   // Jacobian of the Roe flux in the assembled operator: the dissipation matrix held fixed, or
   // the exact derivative of the first-order flux (forward AD, |A_Roe|'s own dependence
   // included) in every step or only in the steps of the first-order residual (--order 1 and the
-  // first-order start), where it is that residual's Newton Jacobian. Frozen by default: the
-  // exact one costs 1.5 times per first-order iteration what it saves in iterations, and as the
-  // operator of second-order defect correction it diverged at NPARC's shock (README, Roe
-  // Jacobian). A failed linear solve with the exact one switches to the frozen one.
+  // first-order start), where it is that residual's Newton Jacobian. Frozen by default: an
+  // exact first-order iteration costs about 1.56 times a frozen one, more than it saves in
+  // iterations on most benchmarks, and as the operator of second-order defect correction it
+  // diverged at NPARC's shock (README, Roe Jacobian). A failed linear solve with the exact one
+  // switches to the frozen one.
   RoeJacobian roe_jacobian = RoeJacobian::frozen;
   int print_every = 0;  // residual line on stderr every N iterations (0: silent)
   // Called after every iteration with its number, after any residual line (the tool's progress
