@@ -1773,9 +1773,9 @@ void FlowSolver::accept_or_reject_step(SolveLoop& s) {
   } else if ((limited_fraction > settings_.relaxed_fraction_tolerated && s.omega_min < 0.5) ||
              s.last_linear_failed) {
     if (s.last_linear_failed && exact_roe_jacobian_) {
-      // The exact Roe Jacobian is not diagonally dominant across a shock, where ILU of it can
-      // fail (NPARC 0.75, 480 x 120, first order: GMRES at 0.5-0.6 after 80 iterations as the
-      // shock settled, 1,570 iterations in all against 124); the frozen dissipation matrix is.
+      // Across a forming shock ILU of the exact Roe Jacobian can fail where that of the frozen
+      // one still serves (NPARC 0.75, 480 x 120, first order: GMRES at 0.5-0.6 after 80
+      // iterations as the shock settled, 1,570 iterations in all against 124).
       exact_roe_jacobian_ = false;
       s.report.roe_jacobian_frozen_from = s.it;
       if (settings_.print_every > 0)
