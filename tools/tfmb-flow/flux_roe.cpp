@@ -47,32 +47,19 @@ StateOf<J> dissipation(const RoeAverage<R>& r, const J& drho, const J& du, const
               a3 * (r.h + r.c * r.vn)};
 }
 
-template <class T>
-T total_enthalpy(const PerfectGas& gas, const StateOf<T>& w) {
-  return gas.gamma / (gas.gamma - 1.0) * w[3] / w[0] + 0.5 * (w[1] * w[1] + w[2] * w[2]);
-}
-
-template <class T>
-StateOf<T> euler_flux_of(const PerfectGas& gas, const StateOf<T>& w, double nx, double ny) {
-  const T vn = w[1] * nx + w[2] * ny;
-  const T m = w[0] * vn;
-  return {m, m * w[1] + w[3] * nx, m * w[2] + w[3] * ny, m * total_enthalpy(gas, w)};
-}
-
 // Roe averages (Blazek 2015, eq. 4.89) and the smoothed eigenvalues at the unit normal.
 template <class T>
 RoeAverage<T> roe_average(const PerfectGas& gas, const StateOf<T>& wl, const StateOf<T>& wr,
-                          double nx, double ny, double entropy_fix) {
+                          double nx, double ny, double s, double entropy_fix) {
   using std::sqrt;
-  const double s = std::sqrt(nx * nx + ny * ny);
   RoeAverage<T> r;
   r.nx = nx / s;
   r.ny = ny / s;
   const T sl = sqrt(wl[0]);
   const T sr = sqrt(wr[0]);
   const T wgt = 1.0 / (sl + sr);
-  const T hl = total_enthalpy(gas, wl);
-  const T hr = total_enthalpy(gas, wr);
+  const T hl = gas.total_enthalpy(wl);
+  const T hr = gas.total_enthalpy(wr);
   r.rho = sl * sr;
   r.u = (sl * wl[1] + sr * wr[1]) * wgt;
   r.v = (sl * wl[2] + sr * wr[2]) * wgt;
@@ -93,9 +80,9 @@ template <class T>
 StateOf<T> roe_flux_of(const PerfectGas& gas, const StateOf<T>& wl, const StateOf<T>& wr, double nx,
                        double ny, double entropy_fix, RoeAverage<T>* average = nullptr) {
   const double s = std::sqrt(nx * nx + ny * ny);
-  const RoeAverage<T> r = roe_average(gas, wl, wr, nx, ny, entropy_fix);
-  const StateOf<T> fl = euler_flux_of(gas, wl, nx, ny);
-  const StateOf<T> fr = euler_flux_of(gas, wr, nx, ny);
+  const RoeAverage<T> r = roe_average(gas, wl, wr, nx, ny, s, entropy_fix);
+  const StateOf<T> fl = euler_flux(gas, wl, nx, ny);
+  const StateOf<T> fr = euler_flux(gas, wr, nx, ny);
   const StateOf<T> d =
       dissipation<T, T>(r, wr[0] - wl[0], wr[1] - wl[1], wr[2] - wl[2], wr[3] - wl[3]);
   StateOf<T> f;
@@ -104,14 +91,6 @@ StateOf<T> roe_flux_of(const PerfectGas& gas, const StateOf<T>& wl, const StateO
   if (average)
     *average = r;
   return f;
-}
-
-// Primitive variables of conservative ones, on any scalar (PerfectGas::primitive on doubles).
-template <class T>
-StateOf<T> primitive_of(const PerfectGas& gas, const StateOf<T>& u) {
-  const T vx = u[1] / u[0];
-  const T vy = u[2] / u[0];
-  return {u[0], vx, vy, (gas.gamma - 1.0) * (u[3] - 0.5 * u[0] * (vx * vx + vy * vy))};
 }
 
 }  // namespace
@@ -159,7 +138,7 @@ State roe_flux_exact(const PerfectGas& gas, const State& wl, const State& wr, do
     ur_d[k] = D::variable(4 + k, ur[k]);
   }
   const StateOf<D> f =
-      roe_flux_of<D>(gas, primitive_of(gas, ul_d), primitive_of(gas, ur_d), nx, ny, entropy_fix);
+      roe_flux_of<D>(gas, gas.primitive(ul_d), gas.primitive(ur_d), nx, ny, entropy_fix);
   State value;
   for (int row = 0; row < 4; ++row) {
     value[row] = f[row].v;

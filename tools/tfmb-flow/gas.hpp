@@ -21,24 +21,28 @@ struct PerfectGas {
   State conservative(const State& w) const {
     return {w[0], w[0] * w[1], w[0] * w[2], w[3] / (gamma - 1.0) + 0.5 * w[0] * (w[1] * w[1] + w[2] * w[2])};
   }
-  // U -> W
-  State primitive(const State& u) const {
-    const double rho = u[0];
-    const double vx = u[1] / rho;
-    const double vy = u[2] / rho;
+  // U -> W, on any scalar (double, or tfmb::Dual for the exact Roe Jacobian)
+  template <class T>
+  std::array<T, 4> primitive(const std::array<T, 4>& u) const {
+    const T rho = u[0];
+    const T vx = u[1] / rho;
+    const T vy = u[2] / rho;
     return {rho, vx, vy, (gamma - 1.0) * (u[3] - 0.5 * rho * (vx * vx + vy * vy))};
   }
   double sound_speed(const State& w) const { return std::sqrt(gamma * w[3] / w[0]); }
   double temperature(const State& w) const { return w[3] / (w[0] * R); }
-  double total_enthalpy(const State& w) const {
+  template <class T>
+  T total_enthalpy(const std::array<T, 4>& w) const {
     return gamma / (gamma - 1.0) * w[3] / w[0] + 0.5 * (w[1] * w[1] + w[2] * w[2]);
   }
 };
 
 // Inviscid flux through a face with (non-unit) normal n: F(W) . n (Blazek 2015, eq. 2.21).
-inline State euler_flux(const PerfectGas& gas, const State& w, double nx, double ny) {
-  const double vn = w[1] * nx + w[2] * ny;
-  const double m = w[0] * vn;
+template <class T>
+std::array<T, 4> euler_flux(const PerfectGas& gas, const std::array<T, 4>& w, double nx,
+                            double ny) {
+  const T vn = w[1] * nx + w[2] * ny;
+  const T m = w[0] * vn;
   return {m, m * w[1] + w[3] * nx, m * w[2] + w[3] * ny, m * gas.total_enthalpy(w)};
 }
 
