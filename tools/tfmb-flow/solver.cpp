@@ -1382,12 +1382,12 @@ bool FlowSolver::track_residual(SolveLoop& s) {
   // (a start with no density residual at all, e.g. fluid at rest behind a pressure jump,
   // has no reference yet)
   s.report.residual_drop = s.r_max > 0.0 ? r / s.r_max : 1.0;
-  // (a zero residual, the uniform state of a cold start, is no minimum to make progress from:
-  // counted as one, it made every later iteration a stall and halved the CFL ceiling every
-  // cfl_stall_iterations)
   const bool running_away =
       s.newton_from == 0 && s.cfl < settings_.cfl_start && r > kDivergedRise * s.r_min;
   s.diverged_for = running_away ? s.diverged_for + 1 : 0;
+  // (a zero residual, the uniform state of a cold start, is no minimum to make progress from:
+  // counted as one, it made every later iteration a stall and halved the CFL ceiling every
+  // cfl_stall_iterations)
   if (r < s.r_min && r > 0.0) {
     s.r_min = r;
     s.last_minimum = s.it;
