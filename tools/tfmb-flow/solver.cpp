@@ -52,11 +52,8 @@ constexpr double kLinearSolveFailed = 0.5;
 // Newton-Krylov phases of MatrixFree::after_limiter_freeze that may fail before a run stays
 // with defect correction and a live limiter
 constexpr int kNewtonFallbacks = 3;
-// A march that has diverged (CFL below its start, residual kDivergedRise times its best, both
-// for kDivergedIterations iterations in a row) goes back to its best state with half the CFL
+// A march that has diverged (DivergedMarch) goes back to its best state with half the CFL
 // ceiling, at most kBestStateRestarts times
-constexpr double kDivergedRise = 10.0;
-constexpr int kDivergedIterations = 10;
 constexpr int kBestStateRestarts = 4;
 
 // Smallest pressure accepted, relative to the total energy per volume rho E (see physical()).
@@ -1194,7 +1191,7 @@ struct FlowSolver::SolveLoop {
   std::vector<State> best_u;
   std::vector<double> best_nu;
   int best_iteration = 0;
-  int diverged_for = 0;  // iterations in a row with the CFL below its start, far above the best
+  DivergedMarch diverged_march;
   bool release_if_far = false;  // a held limiter, let go at the first iteration if far off
   std::vector<double> target_total_pressure;  // per boundary condition, the ramp's end value
   int ramp = 0;                               // inflow ramp iterations
@@ -1382,9 +1379,8 @@ bool FlowSolver::track_residual(SolveLoop& s) {
   // (a start with no density residual at all, e.g. fluid at rest behind a pressure jump,
   // has no reference yet)
   s.report.residual_drop = s.r_max > 0.0 ? r / s.r_max : 1.0;
-  const bool running_away =
-      s.newton_from == 0 && s.cfl < settings_.cfl_start && r > kDivergedRise * s.r_min;
-  s.diverged_for = running_away ? s.diverged_for + 1 : 0;
+  const bool diverged =
+      s.diverged_march.diverged(s.newton_from != 0, s.cfl, settings_.cfl_start, r, s.r_min);
   // (a zero residual, the uniform state of a cold start, is no minimum to make progress from:
   // counted as one, it made every later iteration a stall and halved the CFL ceiling every
   // cfl_stall_iterations)
@@ -1395,19 +1391,15 @@ bool FlowSolver::track_residual(SolveLoop& s) {
     s.best_u = u_;
     s.best_nu = turbulence_snapshot();
     s.best_iteration = s.it;
-  } else if (s.diverged_for >= kDivergedIterations && !s.best_u.empty() &&
-             s.report.best_state_restarts < kBestStateRestarts) {
+  } else if (diverged && !s.best_u.empty() && s.report.best_state_restarts < kBestStateRestarts) {
     // The march diverged: relaxation and SER have held the CFL below its start value while
     // the residual ran away from its best. Left alone it does not come back (nasa-2dcd NPR
     // 2.46, defect correction with a live limiter after three failed Newton phases: one wall
     // node at the separation relaxed to nothing, the CFL fell to 1e-2 and the residual rose
     // from 2e4 to 1e10 over 600 iterations). Back to the best state, limiter live, the CFL
-    // number from its start value and half the ceiling. Only after kDivergedIterations such
-    // iterations in a row: a first-order start's shock transient dips below the start CFL for
-    // a few iterations and recovers by itself (NPARC 0.75, 240 x 60: 4 iterations at CFL 2-5,
-    // 200 times its best; sent back to its best state it took 105 iterations instead of 99).
+    // number from its start value and half the ceiling. (Sent back at the first such
+    // iteration, NPARC 0.75 on 240 x 60 took 105 iterations instead of 99: DivergedMarch.)
     ++s.report.best_state_restarts;
-    s.diverged_for = 0;
     s.cfl_ceiling = std::max(settings_.cfl_start, 0.5 * s.cfl_ceiling);
     if (settings_.print_every > 0)
       std::fprintf(stderr,

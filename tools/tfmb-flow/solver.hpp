@@ -195,6 +195,28 @@ struct IterationRecord {
 // where segregated ones took 20, with the same second-order stage after either.
 SolverSettings first_order_start_settings(const SolverSettings& second, double drop);
 
+// Whether a pseudo-time march has diverged: with the CFL number below its start value and the
+// density residual kRise times its best, kIterations iterations in a row (defect-correction
+// steps only). A first-order start's shock transient does that for a few iterations and
+// recovers by itself (NPARC 0.75, 240 x 60: 4 iterations at CFL 2-5, 200 times its best).
+class DivergedMarch {
+ public:
+  static constexpr double kRise = 10.0;
+  static constexpr int kIterations = 10;
+  // This iteration's figures; true once the march has diverged (the count then starts afresh).
+  bool diverged(bool newton_step, double cfl, double cfl_start, double residual, double best) {
+    const bool running_away = !newton_step && cfl < cfl_start && residual > kRise * best;
+    iterations_ = running_away ? iterations_ + 1 : 0;
+    if (iterations_ < kIterations)
+      return false;
+    iterations_ = 0;
+    return true;
+  }
+
+ private:
+  int iterations_ = 0;  // in a row running away
+};
+
 struct SolveReport {
   bool converged = false;
   bool converged_by_stationarity = false;  // (rather than by the residual drop)
