@@ -563,8 +563,10 @@ int run(const Options& options, const Logger& log) {
       progress.finish();
       write_structure(options, fm, *asmb, r.state, analysis, r.completed, times, history, nullptr, &solver.motion(),
                       r.time);
-      log.summary("dynamic: " + std::to_string(r.steps) + " steps to t = " + std::to_string(r.time) + " s" +
-                  (r.completed ? "" : " (NOT completed)"));
+      log.summary(
+          "dynamic: " + std::to_string(r.steps) + " steps to t = " + std::to_string(r.time) +
+          " s, " + std::to_string(r.iterations) + " Newton iterations, " +
+          std::to_string(r.cutbacks) + " step cut-backs" + (r.completed ? "" : " (NOT completed)"));
       if (!r.completed) throw NotConverged("Newton failed at t = " + std::to_string(r.time) + " s");
     } else {
       const ModalResult r = modal_analysis(*asmb, asmb->initial_state(), options.modes);
