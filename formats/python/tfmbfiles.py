@@ -217,11 +217,43 @@ def throat_height(f):
         # (and so the discharge coefficient) silently came from the other flaps.
         if half in halves:
             halves[half].append(dataset(f, f"flaps/{name}/inner_wall", shape=(None, 2)))
-    if not halves["upper"] or not halves["lower"]:
+    return _smallest_gap(halves["upper"], halves["lower"])
+
+
+def mesh_throat_height(model, mesh):
+    """Of an open model file and an open file with its flow mesh (/mesh: flowmesh or flow): the
+    smallest distance between the mesh's inner walls of the model's upper and lower flaps [m],
+    i.e. the throat of the walls the flow sees, moved ones included (a two-way iterate's deformed
+    mesh: the model's own walls would give the throat before the flaps moved). None when the
+    mesh has no inner wall of an upper and of a lower flap."""
+    halves = {name: attr(model, f"flaps/{name}", "half", str, default="")
+              for name in (members(model, "flaps") if "flaps" in model else [])}
+    points = dataset(mesh, "mesh/points", shape=(None, 2))
+    walls = {"upper": [], "lower": []}
+    for name in members(mesh, "mesh/boundaries"):
+        key = f"mesh/boundaries/{name}"
+        if attr(mesh, key, "side", str, default="") != "inner":
+            continue
+        flap = attr(mesh, key, "flap", str)
+        if flap not in halves:
+            raise BadInput.at(mesh, key, f"flap '{flap}' is not a flap of {model.filename}")
+        if halves[flap] not in walls:
+            continue
+        edges = dataset(mesh, f"{key}/edges", int, shape=(None, 2), below=len(points))
+        if len(edges):
+            # edges run head to tail (flowmesh.md): the polyline's nodes in order
+            walls[halves[flap]].append(points[np.append(edges[:, 0], edges[-1, 1])])
+    return _smallest_gap(walls["upper"], walls["lower"])
+
+
+def _smallest_gap(uppers, lowers):
+    """The smallest distance from a vertex of a polyline of `uppers` to a segment of a polyline
+    of `lowers`, or None when either list is empty."""
+    if not uppers or not lowers:
         return None
     best = np.inf
-    for upper in halves["upper"]:
-        for lower in halves["lower"]:
+    for upper in uppers:
+        for lower in lowers:
             a, b = lower[:-1], lower[1:]
             ab = b - a
             length2 = np.maximum((ab * ab).sum(axis=1), 1e-300)

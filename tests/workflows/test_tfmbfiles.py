@@ -146,6 +146,49 @@ expect_bad("throat without an inner wall", lambda: inside_model("throat.h5", tfm
            "throat.h5: /flaps/l/inner_wall: missing dataset")
 
 
+# mesh_throat_height (flow-args --mesh): the gap between the mesh's inner walls of the upper and
+# lower flaps, wherever the walls now are (a two-way iterate's moved mesh), not the model's.
+# Model: u at y = 1, l at y = -1 (gap 2). Mesh: u's inner wall moved up to y = 1.5 at one end
+# (gap 2.25 at the other), an outer wall and an unnamed wall closer in that do not count.
+def write_mesh(path, boundaries):
+    with h5py.File(path, "w") as f:
+        f.attrs["format"], f.attrs["format_version"] = "tfmb/flowmesh", "1.0"
+        f["mesh/points"] = np.array([[0.0, 1.5], [0.5, 1.4], [1.0, 1.25], [0.0, -1.0], [1.0, -1.0],
+                                     [0.5, 0.1], [0.5, -0.1]])
+        for name, (edges, attrs) in boundaries.items():
+            g = f.create_group(f"mesh/boundaries/{name}")
+            g["edges"] = np.array(edges, dtype=np.int64)
+            for k, v in attrs.items():
+                g.attrs[k] = v
+
+
+with h5py.File("throat.h5", "w") as f:
+    f.attrs["format"], f.attrs["format_version"] = "tfmb/model", "2.7"
+    for name, half, y in (("u", "upper", 1.0), ("l", "lower", -1.0)):
+        f.create_group(f"flaps/{name}").attrs["half"] = half
+        f[f"flaps/{name}/inner_wall"] = np.array([[0.0, y], [1.0, y]])
+walls = {"u_inner": ([[0, 1], [1, 2]], {"kind": "wall", "flap": "u", "side": "inner"}),
+         "l_inner": ([[3, 4]], {"kind": "wall", "flap": "l", "side": "inner"}),
+         "u_outer": ([[5, 6]], {"kind": "wall", "flap": "u", "side": "outer"}),
+         "plenum": ([[6, 5]], {"kind": "wall"})}
+write_mesh("moved.h5", walls)
+
+
+def mesh_throat(model, mesh):
+    with open_kind(model, "model") as f, open_kind(mesh, ["flowmesh", "flow"]) as m:
+        return tfmbfiles.mesh_throat_height(f, m)
+
+
+assert abs(mesh_throat("throat.h5", "moved.h5") - 2.25) < 1e-12, mesh_throat("throat.h5", "moved.h5")
+assert inside_model("throat.h5", tfmbfiles.throat_height) == 2.0
+write_mesh("stranger.h5", {**walls, "x_inner": ([[5, 6]], {"kind": "wall", "flap": "x", "side": "inner"})})
+expect_bad("mesh wall of a flap the model lacks", lambda: mesh_throat("throat.h5", "stranger.h5"),
+           "stranger.h5: /mesh/boundaries/x_inner: flap 'x' is not a flap of throat.h5")
+write_mesh("far.h5", {**walls, "l_inner": ([[3, 9]], {"kind": "wall", "flap": "l", "side": "inner"})})
+expect_bad("mesh wall edge out of range", lambda: mesh_throat("throat.h5", "far.h5"),
+           "far.h5: /mesh/boundaries/l_inner/edges: index 9 at flat index 1 out of range [0, 7)")
+
+
 def read_attr(path, key, name, kind=float):
     with open_kind(path, "walldisp") as f:
         return attr(f, key, name, kind)
@@ -181,6 +224,8 @@ scripts = [
     ("flow-args wrong kind", [f"{src}/workflows/flow-args", good], "good.h5: /: attribute 'format'"),
     ("flow-args wrong major", [f"{src}/workflows/flow-args", write("model1.h5", kind="model", version="1.0")],
      "model1.h5: /: unknown major"),
+    ("flow-args --mesh wrong kind", [f"{src}/workflows/flow-args", "throat.h5", "--mesh", good],
+     "good.h5: /: attribute 'format' is 'tfmb/walldisp', expected 'tfmb/flowmesh' or 'tfmb/flow'"),
     ("case-summary", [f"{src}/workflows/case-summary", run_dir], "flow.h5: /integrals: missing group"),
     ("tfmb-couple", [f"{src}/workflows/tfmb-couple", "--iteration", "1", "--raw", "nan.h5", "--state",
                      "s.npz", "--log", "l.csv"], "nan.h5: /walls/upper/displacement: non-finite"),
