@@ -217,7 +217,13 @@ def throat_height(f):
         # (and so the discharge coefficient) silently came from the other flaps.
         if half in halves:
             halves[half].append(dataset(f, f"flaps/{name}/inner_wall", shape=(None, 2)))
-    return _smallest_gap(halves["upper"], halves["lower"])
+    return _smallest_gap(halves["upper"], [(p[:-1], p[1:]) for p in halves["lower"]])
+
+
+def flap_halves(model):
+    """{flap name: its @half ("upper", "lower" or "")} of an open model file."""
+    return {name: attr(model, f"flaps/{name}", "half", str, default="")
+            for name in (members(model, "flaps") if "flaps" in model else [])}
 
 
 def mesh_throat_height(model, mesh):
@@ -226,8 +232,7 @@ def mesh_throat_height(model, mesh):
     i.e. the throat of the walls the flow sees, moved ones included (a two-way iterate's deformed
     mesh: the model's own walls would give the throat before the flaps moved). None when the
     mesh has no inner wall of an upper and of a lower flap."""
-    halves = {name: attr(model, f"flaps/{name}", "half", str, default="")
-              for name in (members(model, "flaps") if "flaps" in model else [])}
+    halves = flap_halves(model)
     points = dataset(mesh, "mesh/points", shape=(None, 2))
     walls = {"upper": [], "lower": []}
     for name in members(mesh, "mesh/boundaries"):
@@ -237,27 +242,33 @@ def mesh_throat_height(model, mesh):
         flap = attr(mesh, key, "flap", str)
         if flap not in halves:
             raise BadInput.at(mesh, key, f"flap '{flap}' is not a flap of {model.filename}")
-        if halves[flap] not in walls:
-            continue
-        edges = dataset(mesh, f"{key}/edges", int, shape=(None, 2), below=len(points))
-        if len(edges):
-            # edges run head to tail (flowmesh.md): the polyline's nodes in order
-            walls[halves[flap]].append(points[np.append(edges[:, 0], edges[-1, 1])])
-    return _smallest_gap(walls["upper"], walls["lower"])
+        if halves[flap] in walls:
+            walls[halves[flap]].append(dataset(mesh, f"{key}/edges", int, shape=(None, 2),
+                                               below=len(points)))
+    return wall_gap(points, walls["upper"], walls["lower"])
 
 
-def _smallest_gap(uppers, lowers):
-    """The smallest distance from a vertex of a polyline of `uppers` to a segment of a polyline
-    of `lowers`, or None when either list is empty."""
-    if not uppers or not lowers:
+def wall_gap(points, upper_edges, lower_edges):
+    """The smallest distance between two sets of mesh walls, each a list of edge arrays (m,2)
+    into `points` (n,2), or None when either has no edge (the throat of mesh_throat_height and
+    of tfmb-convert import-flow)."""
+    uppers = [points[np.unique(e)] for e in upper_edges if len(e)]
+    lowers = [(points[e[:, 0]], points[e[:, 1]]) for e in lower_edges if len(e)]
+    return _smallest_gap(uppers, lowers)
+
+
+def _smallest_gap(upper_points, lower_segments):
+    """The smallest distance from a point of `upper_points` (arrays (n,2)) to a segment of
+    `lower_segments` (pairs of arrays (m,2): the segments' starts and ends), or None when either
+    list is empty."""
+    if not upper_points or not lower_segments:
         return None
     best = np.inf
-    for upper in uppers:
-        for lower in lowers:
-            a, b = lower[:-1], lower[1:]
-            ab = b - a
-            length2 = np.maximum((ab * ab).sum(axis=1), 1e-300)
-            for point in upper:
+    for a, b in lower_segments:
+        ab = b - a
+        length2 = np.maximum((ab * ab).sum(axis=1), 1e-300)
+        for points in upper_points:
+            for point in points:
                 t = np.clip(((point - a) * ab).sum(axis=1) / length2, 0.0, 1.0)
                 d = np.hypot(*(a + t[:, None] * ab - point).T)
                 best = min(best, float(d.min()))
