@@ -234,7 +234,7 @@ def mesh_throat_height(model, mesh):
     mesh has no inner wall of an upper and of a lower flap."""
     halves = flap_halves(model)
     points = dataset(mesh, "mesh/points", shape=(None, 2))
-    walls = {"upper": [], "lower": []}
+    inner = []
     for name in members(mesh, "mesh/boundaries"):
         key = f"mesh/boundaries/{name}"
         if attr(mesh, key, "side", str, default="") != "inner":
@@ -242,18 +242,21 @@ def mesh_throat_height(model, mesh):
         flap = attr(mesh, key, "flap", str)
         if flap not in halves:
             raise BadInput.at(mesh, key, f"flap '{flap}' is not a flap of {model.filename}")
-        if halves[flap] in walls:
-            walls[halves[flap]].append(dataset(mesh, f"{key}/edges", int, shape=(None, 2),
-                                               below=len(points)))
-    return wall_gap(points, walls["upper"], walls["lower"])
+        inner.append((flap, dataset(mesh, f"{key}/edges", int, shape=(None, 2), below=len(points))))
+    return inner_wall_gap(points, inner, halves)
 
 
-def wall_gap(points, upper_edges, lower_edges):
-    """The smallest distance between two sets of mesh walls, each a list of edge arrays (m,2)
-    into `points` (n,2), or None when either has no edge (the throat of mesh_throat_height and
-    of tfmb-convert import-flow)."""
-    uppers = [points[np.unique(e)] for e in upper_edges if len(e)]
-    lowers = [(points[e[:, 0]], points[e[:, 1]]) for e in lower_edges if len(e)]
+def inner_wall_gap(points, inner_walls, halves):
+    """The throat of a mesh: the smallest distance between the inner walls of the upper and of the
+    lower flaps. `inner_walls` lists (flap name, edge array (m,2) into `points` (n,2)), `halves`
+    maps flap names to "upper" / "lower" (flap_halves). None when either half has no edge
+    (mesh_throat_height and tfmb-convert import-flow)."""
+    edges = {"upper": [], "lower": []}
+    for flap, e in inner_walls:
+        if halves.get(flap) in edges and len(e):
+            edges[halves[flap]].append(np.asarray(e).reshape(-1, 2))
+    uppers = [points[np.unique(e)] for e in edges["upper"]]
+    lowers = [(points[e[:, 0]], points[e[:, 1]]) for e in edges["lower"]]
     return _smallest_gap(uppers, lowers)
 
 
