@@ -746,7 +746,7 @@ std::vector<double> FlowSolver::jacobian_product(const std::vector<double>& x, b
     jac_coupled_ = jacobian_pattern(5);
   const std::vector<double> no_time_term(dual_.num_nodes, 0.0);
   compute_residual(true);
-  assemble_jacobian(no_time_term);
+  assemble_jacobian(no_time_term, second_order_jacobian_);
   if (turbulence_coupled_) {
     turbulence_residual(true, &no_time_term);
     assemble_coupled_jacobian();
@@ -1358,7 +1358,9 @@ void FlowSolver::linear_step(SolveLoop& s) {
   const int n = s.n, nb = s.nb;
   for (int i = 0; i < n; ++i)
     s.diag_scale[i] = spectral_radius_[i] / s.cfl;  // V / dt
-  assemble_jacobian(s.diag_scale);
+  // defect correction keeps the first-order Jacobian: with a live limiter the second-order one
+  // held at its values is no stable operator (tools/tfmb-flow/README.md, Second-order Jacobian)
+  assemble_jacobian(s.diag_scale, second_order_jacobian_ && newton_krylov_step(s));
   if (s.coupled) {
     s.rec.turbulence_residual = turbulence_residual_norm();
     turbulence_residual(true, &s.diag_scale);

@@ -361,7 +361,8 @@ class FlowSolver {
   void compute_residual(bool update_limiter);  // evaluate_residual, counted and timed
   void evaluate_residual(bool update_limiter);
   bool exact_roe_jacobian_by_settings() const;
-  void assemble_jacobian(const std::vector<double>& diag_scale);
+  // reconstructed: of the second-order residual (needs second_order_jacobian_'s pattern)
+  void assemble_jacobian(const std::vector<double>& diag_scale, bool reconstructed);
   // V a0 / dt of the physical time derivative at node i (0 for a steady solve)
   double physical_time_diagonal(int i) const {
     return time_dt_ > 0.0 ? dual_.volume[i] * time_a_[0] / time_dt_ : 0.0;

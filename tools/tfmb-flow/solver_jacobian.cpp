@@ -115,11 +115,11 @@ void FlowSolver::viscous_edge_jacobian(int e, Block& left, Block& right) {
   }
 }
 
-void FlowSolver::assemble_jacobian(const std::vector<double>& diag_scale) {
+void FlowSolver::assemble_jacobian(const std::vector<double>& diag_scale, bool reconstructed) {
   jac_.set_zero();
   if (settings_.turbulent && turbulence_coupled_)
     edge_flux_eddy_slope_.assign(dual_.num_edges(), State{});
-  if (second_order_jacobian_)
+  if (reconstructed)
     assemble_reconstructed_fluxes();
   else
     assemble_first_order_fluxes();
