@@ -29,45 +29,6 @@ struct PerfectGas {
     const T vy = u[2] / rho;
     return {rho, vx, vy, (gamma - 1.0) * (u[3] - 0.5 * rho * (vx * vx + vy * vy))};
   }
-  // dU/dW and dW/dU at W, the derivatives of the two conversions above (row-major)
-  Block conservative_jacobian(const State& w) const {
-    const double u = w[1], v = w[2];
-    return {1.0,
-            0.0,
-            0.0,
-            0.0,  //
-            u,
-            w[0],
-            0.0,
-            0.0,  //
-            v,
-            0.0,
-            w[0],
-            0.0,  //
-            0.5 * (u * u + v * v),
-            w[0] * u,
-            w[0] * v,
-            1.0 / (gamma - 1.0)};
-  }
-  Block primitive_jacobian(const State& w) const {
-    const double u = w[1], v = w[2], g1 = gamma - 1.0;
-    return {1.0,
-            0.0,
-            0.0,
-            0.0,  //
-            -u / w[0],
-            1.0 / w[0],
-            0.0,
-            0.0,  //
-            -v / w[0],
-            0.0,
-            1.0 / w[0],
-            0.0,  //
-            0.5 * g1 * (u * u + v * v),
-            -g1 * u,
-            -g1 * v,
-            g1};
-  }
   double sound_speed(const State& w) const { return std::sqrt(gamma * w[3] / w[0]); }
   double temperature(const State& w) const { return w[3] / (w[0] * R); }
   template <class T>

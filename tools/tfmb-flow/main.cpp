@@ -144,11 +144,6 @@ int main(int argc, char** argv) {
             "level of fill of the block ILU preconditioner (0: ILU(0), the pattern of the "
             "first-order Jacobian; k: also the fill-in of level <= k)",
             tfmb::cli::range(0, 8));
-  table.add("--jacobian-order", o.settings.jacobian_order, "1",
-            "second order: the assembled Jacobian that preconditions the Newton-Krylov steps "
-            "(and is defect correction's operator): 1 of the first-order residual, 2 of the "
-            "second-order residual with the limiter held (neighbours of neighbours)",
-            tfmb::cli::range(1, 2));
   table.add("--coupling-switch-drop", o.settings.coupling_switch_drop, "1",
             "--turbulence-coupling auto: density residual drop from which the steps are "
             "coupled",

@@ -120,8 +120,7 @@ FlowSolver::FlowSolver(const Mesh& mesh, Geometry geometry, const PerfectGas& ga
     }
   }
   venkat_eps_ = make_venkat_epsilon(dual_, settings_.venkat_k, settings_.reference_state);
-  second_order_jacobian_ = settings_.order >= 2 && settings_.jacobian_order == 2;
-  jac_ = jacobian_pattern(4);
+  jac_ = make_pattern(dual_.num_nodes, dual_.edges);
   edge_pos_ij_.resize(dual_.num_edges());
   edge_pos_ji_.resize(dual_.num_edges());
   for (int e = 0; e < dual_.num_edges(); ++e) {
@@ -197,7 +196,7 @@ FlowSolver::FlowSolver(const Mesh& mesh, Geometry geometry, const PerfectGas& ga
     nu_tilde_.assign(n, 0.0);
     sa_row_scale_ = settings_.reference_state[0];
     if (settings_.turbulence_coupling != TurbulenceCoupling::segregated)
-      jac_coupled_ = jacobian_pattern(5);
+      jac_coupled_ = make_pattern(dual_.num_nodes, dual_.edges, 5);
     turbulence_coupled_ = settings_.turbulence_coupling == TurbulenceCoupling::coupled;
   } else {
     settings_.turbulence_coupling = TurbulenceCoupling::segregated;  // nothing to couple
@@ -743,10 +742,10 @@ std::vector<double> FlowSolver::jacobian_product(const std::vector<double>& x, b
   const bool coupled_before = turbulence_coupled_;
   turbulence_coupled_ = settings_.turbulent;
   if (turbulence_coupled_ && jac_coupled_.num_rows == 0)
-    jac_coupled_ = jacobian_pattern(5);
+    jac_coupled_ = make_pattern(dual_.num_nodes, dual_.edges, 5);
   const std::vector<double> no_time_term(dual_.num_nodes, 0.0);
   compute_residual(true);
-  assemble_jacobian(no_time_term, second_order_jacobian_);
+  assemble_jacobian(no_time_term);
   if (turbulence_coupled_) {
     turbulence_residual(true, &no_time_term);
     assemble_coupled_jacobian();
@@ -1358,9 +1357,7 @@ void FlowSolver::linear_step(SolveLoop& s) {
   const int n = s.n, nb = s.nb;
   for (int i = 0; i < n; ++i)
     s.diag_scale[i] = spectral_radius_[i] / s.cfl;  // V / dt
-  // defect correction keeps the first-order Jacobian: with a live limiter the second-order one
-  // held at its values is no stable operator (tools/tfmb-flow/README.md, Second-order Jacobian)
-  assemble_jacobian(s.diag_scale, second_order_jacobian_ && newton_krylov_step(s));
+  assemble_jacobian(s.diag_scale);
   if (s.coupled) {
     s.rec.turbulence_residual = turbulence_residual_norm();
     turbulence_residual(true, &s.diag_scale);

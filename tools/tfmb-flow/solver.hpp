@@ -123,11 +123,6 @@ struct SolverSettings {
   int ilu_partitions = 2;
   // Level of fill of the block ILU preconditioner (0: ILU(0); see BlockIlu0)
   int ilu_fill_level = 0;
-  // Second order: the assembled Jacobian (defect correction's operator, the Newton-Krylov
-  // steps' preconditioner). 1: of the first-order residual (edge neighbours); 2: of the
-  // second-order residual with the limiter held (neighbours of neighbours, about 2.5 times the
-  // blocks), closer to the operator GMRES solves with at high CFL numbers.
-  int jacobian_order = 1;
   int gmres_max_iterations = 80;
   double max_relative_update = 0.5;  // largest relative change of rho or p per node and iteration
   // Coupled SA: largest change of nu_tilde per node and iteration relative to |nu_tilde| + nu.
@@ -278,10 +273,6 @@ struct WallTrace {
   std::vector<Vec2> normal;
 };
 
-// The node pairs at graph distance 1 or 2 over the dual's edges, each once (smaller node first):
-// the pattern of the second-order residual's Jacobian (solver_jacobian.cpp).
-std::vector<std::array<int, 2>> second_neighbour_pairs(const DualMesh& dual);
-
 class FlowSolver {
  public:
   // bcs[b] applies to mesh.boundaries[b]. Node ids and per-node arrays at this interface use the
@@ -361,8 +352,7 @@ class FlowSolver {
   void compute_residual(bool update_limiter);  // evaluate_residual, counted and timed
   void evaluate_residual(bool update_limiter);
   bool exact_roe_jacobian_by_settings() const;
-  // reconstructed: of the second-order residual (needs second_order_jacobian_'s pattern)
-  void assemble_jacobian(const std::vector<double>& diag_scale, bool reconstructed);
+  void assemble_jacobian(const std::vector<double>& diag_scale);
   // V a0 / dt of the physical time derivative at node i (0 for a steady solve)
   double physical_time_diagonal(int i) const {
     return time_dt_ > 0.0 ? dual_.volume[i] * time_a_[0] / time_dt_ : 0.0;
@@ -393,11 +383,7 @@ class FlowSolver {
   // through the convecting velocity.
   void assemble_coupled_jacobian();
   // parts of assemble_jacobian() (solver_jacobian.cpp)
-  BlockSparseMatrix jacobian_pattern(int block_size) const;
   void assemble_first_order_fluxes();
-  void assemble_reconstructed_fluxes();
-  template <class F>
-  void for_each_reconstruction_weight(int node, Vec2 h, F&& f) const;
   // thin-shear viscous flux Jacobian of edge e against its two nodes' conservative states (and
   // d f_e / d mu_t in edge_flux_eddy_slope_ when coupled)
   void viscous_edge_jacobian(int e, Block& left, Block& right);
@@ -495,10 +481,6 @@ class FlowSolver {
   // reads as the transport of rho nu_tilde beside the mass, momentum and energy rows.
   double sa_row_scale_ = 1.0;
   BlockSparseMatrix jac_coupled_;
-  bool second_order_jacobian_ = false;  // order >= 2 and jacobian_order 2: jac_ of the 2nd order
-  // assemble_reconstructed_fluxes()'s per-edge blocks: df/dW_L, df/dW_R, viscous (primitive)
-  std::vector<Block> edge_jacobian_left_, edge_jacobian_right_, edge_viscous_left_,
-      edge_viscous_right_;
   std::vector<double> spectral_radius_;  // sum over faces of (|V.n| + c|n|) per node
   BlockSparseMatrix jac_;
   BlockIlu0 ilu_;
