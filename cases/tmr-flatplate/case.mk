@@ -6,10 +6,16 @@
 # the default ceiling of 1e4 the streamwise CFL number is below 1 there and the run converged
 # linearly (0.96-0.98 per iteration on the 273 x 193 level, not converged in 2000 iterations).
 # The segregated SA step needs the V/dt term (a higher ceiling blew it up on nasa-2dcd), the
-# coupled one does not. Measured: tools/tfmb-flow/README.md, "Benchmark".
+# coupled one does not. --limiter-rise-iterations 5: at that ceiling defect correction is a
+# fixed-point iteration with no time term left, and on the plate its residual rose 5-8 % per
+# iteration from a drop of 5e-6 (a mode at the leading edge it amplifies) until the stall rule
+# froze the limiter 25 iterations later; a rise 5 iterations in a row freezes it there (273 x 193:
+# 87 iterations instead of 105). Not tfmb-flow's default: at nasa-2dcd's ceiling of 1e4 a rise
+# is a transient of the separation, and NPR 2.412 ran 9 minutes instead of 104 s. Measured:
+# tools/tfmb-flow/README.md, "Benchmark".
 ANALYSIS = flow
 FLOW_MODEL = sa
-FLOW_OPTS = --threads 2 --turbulence-coupling auto --cfl-max 1e7
+FLOW_OPTS = --threads 2 --turbulence-coupling auto --cfl-max 1e7 --limiter-rise-iterations 5
 # Pictures: Cf(x) against the TMR's finest-grid (545 x 385) SA results of FUN3D and CFL3D
 # (refdata/flow/tmr_flatplate_sa_cf_vs_x_545x385.csv); x is in TMR grid units, L = 1 m.
 PLOT_REFERENCE = \

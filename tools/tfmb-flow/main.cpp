@@ -131,6 +131,10 @@ int main(int argc, char** argv) {
             "matrix-free steps: GMRES tolerance by Eisenstat-Walker forcing (tighter as the "
             "residual falls faster, down to 1e-3; --matrix-free-linear-tolerance the "
             "loosest) instead of the fixed tolerance");
+  table.add("--limiter-rise-iterations", o.settings.limiter_rise_iterations, "1",
+            "second order: also freeze the limiter when the density residual has risen in this "
+            "many iterations in a row at the CFL ceiling (0: never)",
+            CLI::NonNegativeNumber);
   table.add("--limiter-stall-iterations", o.settings.limiter_stall_iterations, "1",
             "second order: freeze the limiter when the density residual has not reached a "
             "new minimum for this many iterations (0: never; a chattering limiter)",
@@ -140,6 +144,11 @@ int main(int argc, char** argv) {
             "state's density residual is above this fraction of the run's reference (a "
             "large change since the restart file)",
             tfmb::cli::range(0.0, 1.0));
+  table.add("--ilu-partitions", o.settings.ilu_partitions, "1",
+            "independent row ranges of the block ILU preconditioner (couplings between them "
+            "dropped), factorised and applied in parallel; the same value gives the same result "
+            "on any number of threads",
+            tfmb::cli::range(1, 64));
   table.add("--ilu-fill", o.settings.ilu_fill_level, "1",
             "level of fill of the block ILU preconditioner (0: ILU(0), the pattern of the "
             "first-order Jacobian; k: also the fill-in of level <= k)",

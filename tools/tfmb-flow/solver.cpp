@@ -953,6 +953,7 @@ struct FlowSolver::SolveLoop {
   double forcing_previous = 0.0;
   std::vector<double> residual_by_iteration;  // density residual per iteration of this solve
   int last_slow_cut = 0;
+  int rises_at_ceiling = 0;  // iterations in a row whose density residual rose, at the ceiling
   // the state at the lowest density residual so far and its iteration, for a diverged march
   std::vector<State> best_u;
   std::vector<double> best_nu;
@@ -1214,11 +1215,15 @@ void FlowSolver::cut_cfl_ceiling_on_stall(SolveLoop& s) {
 // Freeze the limiter once the residual has dropped by limiter_freeze_drop or stopped reaching
 // new minima (limiter chatter near shocks stalls convergence; the frozen limiter is a fixed,
 // valid scheme). With after_limiter_freeze this starts the Newton-Krylov phase.
-void FlowSolver::freeze_limiter(const SolveLoop& s) {
+void FlowSolver::freeze_limiter(SolveLoop& s) {
+  const bool at_ceiling = s.cfl >= 0.5 * s.cfl_ceiling;
+  s.rises_at_ceiling = at_ceiling && s.rnorm[0] > s.r_previous ? s.rises_at_ceiling + 1 : 0;
   if ((settings_.limiter_freeze_drop > 0.0 &&
        s.report.residual_drop < settings_.limiter_freeze_drop) ||
       (settings_.limiter_stall_iterations > 0 && s.newton_fallbacks < kNewtonFallbacks &&
-       s.it - s.last_minimum > settings_.limiter_stall_iterations)) {
+       s.it - s.last_minimum > settings_.limiter_stall_iterations) ||
+      (settings_.limiter_rise_iterations > 0 && s.newton_fallbacks < kNewtonFallbacks &&
+       s.rises_at_ceiling >= settings_.limiter_rise_iterations)) {
     limiter_frozen_ = true;
   }
 }

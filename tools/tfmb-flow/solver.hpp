@@ -64,6 +64,11 @@ struct SolverSettings {
   // stalling convergence near shocks (the frozen limiter is a fixed, valid scheme).
   double limiter_freeze_drop = 0.0;
   int limiter_stall_iterations = 25;
+  // ... or when the density residual has risen in each of this many iterations in a row at the
+  // CFL ceiling (0: never). Defect correction at a large CFL number is a fixed-point iteration
+  // x <- x - J1^-1 R2(x); a steady rise there is a mode it amplifies (TMR plate: 6 % per
+  // iteration at the leading edge from CFL 1e7), which no further iteration of it removes.
+  int limiter_rise_iterations = 0;
   // A restart's limiter held from the start (hold_limiter(true)) is released at the first iteration
   // when the state's density residual is more than this fraction of the run's reference: the state
   // is then far from the one the limiter belongs to, and Newton steps through it fail. Measured on
@@ -420,7 +425,7 @@ class FlowSolver {
   void release_held_limiter_if_far(const SolveLoop& s);
   bool track_residual(SolveLoop& s);  // true: went back to the best state
   void cut_cfl_ceiling_on_stall(SolveLoop& s);
-  void freeze_limiter(const SolveLoop& s);
+  void freeze_limiter(SolveLoop& s);
   bool abandon_failed_newton_phase(SolveLoop& s);  // true: went back to the phase's start
   void update_cfl(SolveLoop& s);
   void begin_record(SolveLoop& s);
