@@ -387,8 +387,8 @@ class FlowSolver {
   // nu_tilde through mu_t in the viscous fluxes, the nu_tilde row against the mean flow
   // through the convecting velocity.
   void assemble_coupled_jacobian();
-  // parts of assemble_jacobian() (solver_jacobian.cpp)
-  void assemble_first_order_fluxes();
+  // assemble_jacobian()'s edge and boundary fluxes and the pseudo-time diagonal
+  void assemble_first_order_fluxes(const std::vector<double>& diag_scale);
   // thin-shear viscous flux Jacobian of edge e against its two nodes' conservative states (and
   // d f_e / d mu_t in edge_flux_eddy_slope_ when coupled)
   void viscous_edge_jacobian(int e, Block& left, Block& right);

@@ -66,14 +66,7 @@ void FlowSolver::assemble_jacobian(const std::vector<double>& diag_scale) {
   jac_.set_zero();
   if (settings_.turbulent && turbulence_coupled_)
     edge_flux_eddy_slope_.assign(dual_.num_edges(), State{});
-  assemble_first_order_fluxes();
-#pragma omp parallel for schedule(static)
-  for (int i = 0; i < dual_.num_nodes; ++i) {
-    double* d = jac_.block(jac_.diag_pos[i]);
-    const double time_diagonal = diag_scale[i] + physical_time_diagonal(i);
-    for (int m = 0; m < 4; ++m)
-      d[5 * m] += time_diagonal;
-  }
+  assemble_first_order_fluxes(diag_scale);
   if (dual_.geometry == Geometry::axisymmetric) {
     const double g1 = gas_.gamma - 1.0;
     for (int i = 0; i < dual_.num_nodes; ++i) {
@@ -127,7 +120,7 @@ void FlowSolver::assemble_jacobian(const std::vector<double>& diag_scale) {
   }
 }
 
-void FlowSolver::assemble_first_order_fluxes() {
+void FlowSolver::assemble_first_order_fluxes(const std::vector<double>& diag_scale) {
   const int ne = dual_.num_edges();
   const bool viscous = settings_.viscous;
 #pragma omp parallel for schedule(static)
@@ -166,6 +159,9 @@ void FlowSolver::assemble_first_order_fluxes() {
       for (int m = 0; m < 16; ++m)
         d[m] -= b[m];
     }
+    const double time_diagonal = diag_scale[i] + physical_time_diagonal(i);
+    for (int m = 0; m < 4; ++m)
+      d[5 * m] += time_diagonal;
   }
   // Boundary fluxes: forward differences in the conservative variables of the face node.
   for (const auto& face : dual_.boundary_faces) {
