@@ -40,6 +40,18 @@ expect_missing "tfmb-matmap" "$bin/tfmb-matmap" "$missing" "$missing" --db "$db"
 expect_missing "tfmb-loads forces" "$bin/tfmb-loads" forces "$missing" "$missing" -o "$out"
 expect_missing "tfmb-strain" "$bin/tfmb-strain" "$missing" "$missing" -o "$out"
 expect_missing "tfmb-check" "$bin/tfmb-check" "$missing"
+# tfmb-flow's solver options out of their range are usage errors (2), named, with nothing written
+for bad in "--limiter-rise-iterations -1" "--ilu-partitions 0"; do
+  rc=0
+  # shellcheck disable=SC2086 # the option and its value are two words
+  "$bin/tfmb-flow" "$missing" --p0 2e5 --T0 300 $bad -o "$out" > /dev/null 2> "$scratch/stderr" || rc=$?
+  if [ "$rc" -ne 2 ] || ! grep -q -- "${bad%% *}" "$scratch/stderr" || [ -e "$out" ]; then
+    echo "FAIL tfmb-flow $bad: exit $rc, expected 2 naming the option: $(head -c 300 "$scratch/stderr")"
+    failed=1
+  else
+    echo "ok   tfmb-flow $bad refused"
+  fi
+done
 # every workflow script answers --help with exit 0 and some text; those that take arguments
 # refuse none with 2 (usage). install-deps, flow-benchmarks and default-bin do their work without
 # arguments.

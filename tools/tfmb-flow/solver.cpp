@@ -485,6 +485,10 @@ double FlowSolver::turbulence_step(double cfl) {
   return rms;
 }
 
+int rises_at_ceiling(int count, double residual, double previous, double cfl, double ceiling) {
+  return cfl >= 0.5 * ceiling && residual > previous ? count + 1 : 0;
+}
+
 SolverSettings first_order_start_settings(const SolverSettings& second, double drop) {
   SolverSettings first = second;
   first.order = 1;
@@ -1216,8 +1220,8 @@ void FlowSolver::cut_cfl_ceiling_on_stall(SolveLoop& s) {
 // new minima (limiter chatter near shocks stalls convergence; the frozen limiter is a fixed,
 // valid scheme). With after_limiter_freeze this starts the Newton-Krylov phase.
 void FlowSolver::freeze_limiter(SolveLoop& s) {
-  const bool at_ceiling = s.cfl >= 0.5 * s.cfl_ceiling;
-  s.rises_at_ceiling = at_ceiling && s.rnorm[0] > s.r_previous ? s.rises_at_ceiling + 1 : 0;
+  s.rises_at_ceiling =
+      rises_at_ceiling(s.rises_at_ceiling, s.rnorm[0], s.r_previous, s.cfl, s.cfl_ceiling);
   if ((settings_.limiter_freeze_drop > 0.0 &&
        s.report.residual_drop < settings_.limiter_freeze_drop) ||
       (settings_.limiter_stall_iterations > 0 && s.newton_fallbacks < kNewtonFallbacks &&

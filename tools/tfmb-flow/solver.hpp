@@ -200,6 +200,11 @@ struct IterationRecord {
 // where segregated ones took 20, with the same second-order stage after either.
 SolverSettings first_order_start_settings(const SolverSettings& second, double drop);
 
+// The count of iterations in a row whose density residual rose at the CFL ceiling (within half
+// of it), after an iteration with `residual` against `previous`: one more than `count` for a rise
+// there, else 0 (SolverSettings::limiter_rise_iterations).
+int rises_at_ceiling(int count, double residual, double previous, double cfl, double ceiling);
+
 // Whether a pseudo-time march has diverged: with the CFL number below its start value and the
 // density residual kRise times its best, kIterations iterations in a row (defect-correction
 // steps only). A first-order start's shock transient does that for a few iterations and
