@@ -6,8 +6,8 @@
 #include <cmath>
 #include <vector>
 
-#include "exact_nozzle.hpp"
 #include "mesh_generate.hpp"
+#include "tfmb-flow/quasi_one_dimensional.hpp"
 #include "tfmb-flow/solver.hpp"
 
 namespace tfmb::flow::nparc {

@@ -27,8 +27,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "exact_nozzle.hpp"
 #include "mesh_generate.hpp"
+#include "tfmb-flow/quasi_one_dimensional.hpp"
 #include "tfmb-flow/solver.hpp"
 
 using namespace tfmb::flow;

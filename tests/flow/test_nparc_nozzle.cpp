@@ -1,7 +1,7 @@
 // NPARC CDV nozzle (refdata/flow/nparc_cdv_nozzle_definition.csv), inviscid, planar channel of
-// height A(x), against the exact quasi-1D solution (exact_nozzle.hpp). Mesh 81 x 21 nodes,
-// one third of the quads split into triangles. Tolerances from the issue: mass flow 0.5 %,
-// supersonic Mach 1 %, normal-shock position 2 % of the nozzle length.
+// height A(x), against the exact quasi-1D solution (tfmb-flow/quasi_one_dimensional.hpp). Mesh 81 x
+// 21 nodes, one third of the quads split into triangles. Tolerances from the issue: mass flow 0.5
+// %, supersonic Mach 1 %, normal-shock position 2 % of the nozzle length.
 #include <gtest/gtest.h>
 
 #include <cstdio>

@@ -26,7 +26,7 @@ std::filesystem::path temp_dir() {
 }
 
 void write_flowmesh(const std::filesystem::path& file, const flow::Mesh& m,
-                    bool drop_outlet = false) {
+                    bool drop_outlet = false, const std::string& outlet_kind = "outflow") {
   formats::Mesh fm;
   fm.points.resize(static_cast<Eigen::Index>(m.points.size()), 2);
   for (std::size_t i = 0; i < m.points.size(); ++i) {
@@ -44,7 +44,7 @@ void write_flowmesh(const std::filesystem::path& file, const flow::Mesh& m,
       fm.quads(static_cast<Eigen::Index>(c), k) = m.quads[c][k];
   }
   const std::map<std::string, std::string> kinds = {
-      {"symmetry", "symmetry"}, {"outlet", "outflow"}, {"wall", "wall"}, {"inlet", "inflow"}};
+      {"symmetry", "symmetry"}, {"outlet", outlet_kind}, {"wall", "wall"}, {"inlet", "inflow"}};
   // The flowmesh spec has each boundary's edges with the domain on their left, as the
   // counter-clockwise cell beside an edge runs it; structured_mesh runs its top and left
   // boundaries the other way, so those are turned round (their order reversed too).
@@ -257,6 +257,51 @@ TEST(FlowRun, BadInputs) {
   other.restart_file = o.output;
   other.output = dir / "other_flow.h5";
   EXPECT_THROW(run(other, log), BadInput);
+  std::filesystem::remove_all(dir);
+}
+
+// --initial-state quasi-1d: the start state of the NPARC duct is the quasi-1D nozzle flow (its
+// throat and normal shock in the log, where the exact solution puts them), the run converges
+// to the same flow as from the uniform start, and a duct that ends in a far field is refused.
+TEST(FlowRun, QuasiOneDimensionalStartOfADuct) {
+  const auto dir = temp_dir();
+  write_flowmesh(dir / "flowmesh.h5", nparc::make_mesh(61, 16));
+  std::ostringstream log_text;
+  const Logger log("tfmb-flow", Verbosity::normal, log_text);
+  RunOptions uniform = nozzle_options(dir);
+  uniform.output = dir / "uniform.h5";
+  const RunResult from_rest = run(uniform, log);
+  ASSERT_TRUE(from_rest.report.converged);
+  EXPECT_EQ(log_text.str().find("quasi-1D start"), std::string::npos);
+
+  RunOptions o = nozzle_options(dir);
+  o.initial_state = "quasi-1d";
+  const RunResult r = run(o, log);
+  ASSERT_TRUE(r.report.converged);
+  const std::string text = log_text.str();
+  const auto at = text.find("quasi-1D start: choked at x = ");
+  ASSERT_NE(at, std::string::npos) << text;
+  const Quasi1dNozzle exact(nparc::area_in, 0, 5, 10, 1.4, 0.75);
+  const auto shock_at = text.find("normal shock at x = ", at);
+  ASSERT_NE(shock_at, std::string::npos) << text;
+  const double shock_x = std::stod(text.substr(shock_at + 20));
+  EXPECT_NEAR(shock_x, exact.shock_position() * nparc::kInch,
+              0.1 * nparc::kInch);  // 61 nodes in 10 in
+  EXPECT_NEAR(r.mass_flow, from_rest.mass_flow, 1e-4 * from_rest.mass_flow);
+  EXPECT_NEAR(r.thrust_x, from_rest.thrust_x, 1e-4 * std::abs(from_rest.thrust_x));
+
+  // a far field instead of the outflow: no duct to take sections of; auto falls back to uniform
+  write_flowmesh(dir / "farfield.h5", nparc::make_mesh(61, 16), false, "farfield");
+  RunOptions open = o;
+  open.mesh_file = dir / "farfield.h5";
+  open.output = dir / "open.h5";
+  open.settings.max_iterations = 1;
+  EXPECT_THROW(run(open, log), UsageError);
+  EXPECT_FALSE(std::filesystem::exists(open.output));
+  open.initial_state = "auto";
+  log_text.str("");
+  run(open, log);
+  EXPECT_EQ(log_text.str().find("quasi-1D start"), std::string::npos);
   std::filesystem::remove_all(dir);
 }
 

@@ -5,6 +5,7 @@
 #include <memory>
 #include <numeric>
 
+#include "quasi_one_dimensional.hpp"
 #include "tfmb/common/cli.hpp"
 #include "tfmb/common/errors.hpp"
 #include "tfmb/common/h5.hpp"
@@ -300,6 +301,12 @@ class FlowStage {
         solver.hold_limiter(true);
         log.info("restart: limiter held at the restart state's values");
       }
+    } else if (quasi_one_dimensional_applies()) {
+      const Quasi1dStart q =
+          quasi_one_dimensional_start(lm.mesh, lm.geometry, gas, o.stagnation_pressure,
+                                      o.stagnation_temperature, o.ambient_pressure);
+      solver.set_primitive(q.states);
+      log.info("quasi-1D start: " + q.summary());
     } else if (has_farfield || !has_inflow) {
       solver.set_uniform(w_inf);
     } else {
@@ -316,6 +323,41 @@ class FlowStage {
              " nodes, " + std::to_string(lm.mesh.triangles.size()) + " triangles, " +
              std::to_string(lm.mesh.quads.size()) + " quads; " + o.model +
              (lm.geometry == Geometry::axisymmetric ? ", axisymmetric" : ", planar"));
+  }
+
+  // --initial-state: the quasi-1D start is for a duct from an inflow at its smallest x to an
+  // outflow at its largest, with no far field (a jet's plume is no duct); auto takes it where that
+  // holds, quasi-1d insists.
+  bool quasi_one_dimensional_applies() const {
+    if (o.initial_state == "uniform")
+      return false;
+    auto mean_x = [&](const std::vector<int>& curves) {
+      double sum = 0.0;
+      int count = 0;
+      for (int c : curves)
+        for (const auto& e : lm.mesh.boundaries[static_cast<std::size_t>(c)].edges) {
+          sum += lm.mesh.points[static_cast<std::size_t>(e[0])].x;
+          ++count;
+        }
+      return count > 0 ? sum / count : 0.0;
+    };
+    std::string why;
+    if (!has_inflow)
+      why = "the mesh has no inflow boundary";
+    else if (has_farfield)
+      why = "the mesh has a far field";
+    else if (outflow_curves.empty())
+      why = "the mesh has no outflow boundary";
+    else if (!(mean_x(inflow_curves) < mean_x(outflow_curves)))
+      why = "the inflow boundary does not lie upstream (at smaller x) of the outflow";
+    else if (!(o.stagnation_pressure > o.ambient_pressure))
+      why = "the outflow pressure is not below the inflow total pressure";
+    if (why.empty())
+      return true;
+    if (o.initial_state == "quasi-1d")
+      throw UsageError("--initial-state quasi-1d needs a duct from an inflow to an outflow: " +
+                       why);
+    return false;
   }
 
   // The solve: time-accurate (dual time stepping, flow.h5 then holds the time averages),

@@ -32,6 +32,8 @@ struct RunOptions {
       20.0;  // [K] probe below T_aw for the heat transfer coefficient (0: none)
   std::string farfield_flux = "roe";  // roe | riemann (BoundaryCondition::riemann_invariants)
   int inflow_ramp = -1;               // iterations of the total-pressure ramp (-1: automatic)
+  // Start state without a restart: uniform | quasi-1d | auto (quasi-1d for an internal flow).
+  std::string initial_state = "uniform";
   bool renumber = true;               // reverse Cuthill-McKee node order inside the solver
   // Second order without a restart file: converge first order first (same settings, its own
   // iteration limit), then continue at second order from that state, as a restart would.
