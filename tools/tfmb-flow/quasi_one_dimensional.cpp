@@ -18,8 +18,9 @@ double mach_of_area_ratio(double ratio, double g, bool supersonic) {
     throw std::invalid_argument("area ratio below 1");
   double lo = supersonic ? 1.0 : 1e-12;
   double hi = supersonic ? 100.0 : 1.0;
-  // area ratio decreases on the subsonic branch and increases on the supersonic one
-  for (int k = 0; k < 200; ++k) {
+  // area ratio decreases on the subsonic branch and increases on the supersonic one; halved
+  // to the last bits (about 50 times; the start state inverts it once per node)
+  for (int k = 0; k < 200 && hi - lo > 1e-15 * hi; ++k) {
     const double mid = 0.5 * (lo + hi);
     const bool above = area_ratio_of_mach(mid, g) > ratio;
     if (above == supersonic)
@@ -103,9 +104,12 @@ double Quasi1dNozzle::mach(double x) const {
   return branch(a_star_1_, true);
 }
 
+double Quasi1dNozzle::total_pressure_ratio(double x) const {
+  return (has_shock_ && x > shock_x_) ? p0_ratio_ : 1.0;
+}
+
 double Quasi1dNozzle::pressure_ratio(double x) const {
-  const double p0 = (has_shock_ && x > shock_x_) ? p0_ratio_ : 1.0;
-  return p0 * isentropic_pressure_ratio(mach(x), gamma_);
+  return total_pressure_ratio(x) * isentropic_pressure_ratio(mach(x), gamma_);
 }
 
 double Quasi1dNozzle::mass_flow(double p0, double t0, double r) const {
@@ -236,7 +240,7 @@ Quasi1dStart quasi_one_dimensional_start(const Mesh& mesh, Geometry geometry, co
   for (const Vec2& p : mesh.points) {
     const double m = q.mach(p.x);
     const double t = t0 / (1.0 + 0.5 * (g - 1.0) * m * m);
-    const double pressure = p0 * q.pressure_ratio(p.x);
+    const double pressure = p0 * q.total_pressure_ratio(p.x) * isentropic_pressure_ratio(m, g);
     start.states.push_back({pressure / (gas.R * t), m * std::sqrt(g * gas.R * t), 0.0, pressure});
   }
   return start;

@@ -35,7 +35,8 @@ class Quasi1dNozzle {
   bool has_shock() const { return has_shock_; }
   double shock_position() const { return shock_x_; }  // meaningful when has_shock()
   double mach(double x) const;
-  double pressure_ratio(double x) const;  // p / p0 (inlet total pressure)
+  double pressure_ratio(double x) const;        // p / p0 (inlet total pressure)
+  double total_pressure_ratio(double x) const;  // the local total pressure / p0 (below 1 behind the shock)
   // Mass flow for inlet total conditions, in the units of area (per unit width for a 2D
   // channel whose "area" is its height) [kg/s].
   double mass_flow(double p0, double t0, double gas_r) const;
