@@ -4,6 +4,8 @@
 #include <cmath>
 #include <memory>
 #include <numeric>
+#include <optional>
+#include <stdexcept>
 
 #include "quasi_one_dimensional.hpp"
 #include "tfmb/common/cli.hpp"
@@ -301,12 +303,9 @@ class FlowStage {
         solver.hold_limiter(true);
         log.info("restart: limiter held at the restart state's values");
       }
-    } else if (quasi_one_dimensional_applies()) {
-      const Quasi1dStart q =
-          quasi_one_dimensional_start(lm.mesh, lm.geometry, gas, o.stagnation_pressure,
-                                      o.stagnation_temperature, o.ambient_pressure);
-      solver.set_primitive(q.states);
-      log.info("quasi-1D start: " + q.summary());
+    } else if (const auto q = quasi_one_dimensional_state()) {
+      solver.set_primitive(q->states);
+      log.info("quasi-1D start: " + q->summary());
     } else if (has_farfield || !has_inflow) {
       solver.set_uniform(w_inf);
     } else {
@@ -358,6 +357,23 @@ class FlowStage {
       throw UsageError("--initial-state quasi-1d needs a duct from an inflow to an outflow: " +
                        why);
     return false;
+  }
+
+  // The quasi-1D start state where it applies; a duct whose sections it cannot take (a station
+  // with no fluid: the mesh has a gap along x) is refused with --initial-state quasi-1d and
+  // starts uniform with auto.
+  std::optional<Quasi1dStart> quasi_one_dimensional_state() const {
+    if (!quasi_one_dimensional_applies())
+      return std::nullopt;
+    try {
+      return quasi_one_dimensional_start(lm.mesh, lm.geometry, gas, o.stagnation_pressure,
+                                         o.stagnation_temperature, o.ambient_pressure);
+    } catch (const std::invalid_argument& e) {
+      if (o.initial_state == "quasi-1d")
+        throw UsageError(std::string("--initial-state quasi-1d: ") + e.what());
+      log.info(std::string("no quasi-1D start (") + e.what() + "): uniform start");
+      return std::nullopt;
+    }
   }
 
   // The solve: time-accurate (dual time stepping, flow.h5 then holds the time averages),
