@@ -12,10 +12,14 @@
 # froze the limiter 25 iterations later; a rise 5 iterations in a row freezes it there (273 x 193:
 # 87 iterations instead of 105). Not tfmb-flow's default: at nasa-2dcd's ceiling of 1e4 a rise
 # is a transient of the separation, and NPR 2.412 ran 9 minutes instead of 104 s. Measured:
-# tools/tfmb-flow/README.md, "Benchmark".
+# tools/tfmb-flow/README.md, "Benchmark". --ilu-fill 2: in the Newton phase GMRES with ILU(0)
+# stopped at its 80 iterations leaving 0.4-0.9 of the residual, and the 545 x 385 level stalled at
+# a drop of about 4e-6; with ILU(2) it converges 8 orders in 107 iterations, and 273 x 193 takes
+# 83 instead of 87 in 0.88 of the time (1,711 linear iterations instead of 3,035; 535 MB
+# instead of 467).
 ANALYSIS = flow
 FLOW_MODEL = sa
-FLOW_OPTS = --threads 2 --turbulence-coupling auto --cfl-max 1e7 --limiter-rise-iterations 5
+FLOW_OPTS = --threads 2 --turbulence-coupling auto --cfl-max 1e7 --limiter-rise-iterations 5 --ilu-fill 2
 # Pictures: Cf(x) against the TMR's finest-grid (545 x 385) SA results of FUN3D and CFL3D
 # (refdata/flow/tmr_flatplate_sa_cf_vs_x_545x385.csv); x is in TMR grid units, L = 1 m.
 PLOT_REFERENCE = \
