@@ -112,11 +112,14 @@ double Quasi1dNozzle::pressure_ratio(double x) const {
   return total_pressure_ratio(x) * isentropic_pressure_ratio(mach(x), gamma_);
 }
 
-double Quasi1dNozzle::mass_flow(double p0, double t0, double r) const {
-  // rho* a* A* with the sonic state of the inlet total conditions (Anderson 2003, eq. 5.21)
-  const double g = gamma_;
-  return p0 * a_star_1_ / std::sqrt(r * t0) * std::sqrt(g) *
+double choked_mass_flux(double p0, double t0, double g, double r) {
+  // rho* a* with the sonic state of the total conditions (Anderson 2003, eq. 5.21)
+  return p0 / std::sqrt(r * t0) * std::sqrt(g) *
          std::pow(2.0 / (g + 1.0), 0.5 * (g + 1.0) / (g - 1.0));
+}
+
+double Quasi1dNozzle::mass_flow(double p0, double t0, double r) const {
+  return choked_mass_flux(p0, t0, gamma_, r) * a_star_1_;
 }
 
 double DuctSections::area_at(double xq) const {

@@ -24,6 +24,9 @@ double isentropic_pressure_ratio(double mach, double gamma);
 // Normal shock: downstream Mach, and p02/p01 (Anderson 2003, eqs. 3.51, 3.57, 3.63).
 double normal_shock_mach(double m1, double gamma);
 double normal_shock_total_pressure_ratio(double m1, double gamma);
+// Mass flow per unit throat area of a choked throat, rho* a* from the total conditions p0 [Pa]
+// and t0 [K] (Anderson 2003, eq. 5.21) [kg/(s m^2)].
+double choked_mass_flux(double p0, double t0, double gamma, double gas_r);
 
 class Quasi1dNozzle {
  public:

@@ -551,13 +551,9 @@ class FlowStage {
     }
     if (o.throat_area && has_inflow) {
       // ideal: isentropic with a sonic throat (the flow.md definition)
-      const double g = o.gamma;
-      const double mach = 1.0;
-      const double t = o.stagnation_temperature / (1.0 + 0.5 * (g - 1.0) * mach * mach);
-      const double p =
-          o.stagnation_pressure * std::pow(t / o.stagnation_temperature, g / (g - 1.0));
-      const double ideal =
-          p / (o.gas_constant * t) * mach * std::sqrt(g * o.gas_constant * t) * *o.throat_area;
+      const double ideal = choked_mass_flux(o.stagnation_pressure, o.stagnation_temperature,
+                                            o.gamma, o.gas_constant) *
+                           *o.throat_area;
       result.discharge_coefficient = result.mass_flow / ideal;
     }
   }
