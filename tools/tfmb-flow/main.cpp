@@ -155,6 +155,11 @@ int main(int argc, char** argv) {
             "state's density residual is above this fraction of the run's reference (a "
             "large change since the restart file)",
             tfmb::cli::range(0.0, 1.0));
+  table.add("--node-ordering", o.node_ordering, "",
+            "internal node order of the implicit system: rcm (reverse Cuthill-McKee) or lines "
+            "(RCM with the wall-normal lines of stretched cells kept contiguous, so that the "
+            "ILU solves along them exactly)",
+            CLI::IsMember({"rcm", "lines"}));
   table.add("--ilu-partitions", o.settings.ilu_partitions, "1",
             "independent row ranges of the block ILU preconditioner (couplings between them "
             "dropped), factorised and applied in parallel; the same value gives the same result "

@@ -1,6 +1,9 @@
 #include "mesh.hpp"
 
+#include <algorithm>
 #include <cstdint>
+#include <limits>
+#include <numeric>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -143,6 +146,103 @@ std::vector<int> rcm_ordering(const Mesh& mesh) {
   std::reverse(order.begin(), order.end());
   std::vector<int> new_of_old(n);
   for (int k = 0; k < n; ++k) new_of_old[order[k]] = k;
+  return new_of_old;
+}
+
+std::vector<std::vector<int>> strong_coupling_lines(const Mesh& mesh, double ratio) {
+  const int n = mesh.num_points();
+  std::vector<std::vector<int>> adj(n);
+  auto link = [&](const int* ids, int nv) {
+    for (int k = 0; k < nv; ++k) {
+      const int a = ids[k], b = ids[(k + 1) % nv];
+      adj[a].push_back(b);
+      adj[b].push_back(a);
+    }
+  };
+  for (const auto& t : mesh.triangles) link(t.data(), 3);
+  for (const auto& q : mesh.quads) link(q.data(), 4);
+  std::vector<double> weakest(n, 0.0), anisotropy(n, 0.0);
+  auto weight = [&](int a, int b) { return 1.0 / norm(mesh.points[b] - mesh.points[a]); };
+  for (int i = 0; i < n; ++i) {
+    auto& a = adj[i];
+    std::sort(a.begin(), a.end());
+    a.erase(std::unique(a.begin(), a.end()), a.end());
+    double smallest = std::numeric_limits<double>::infinity(), largest = 0.0;
+    for (int j : a) {
+      smallest = std::min(smallest, weight(i, j));
+      largest = std::max(largest, weight(i, j));
+    }
+    if (!a.empty()) {
+      weakest[i] = smallest;
+      anisotropy[i] = largest / smallest;
+    }
+  }
+  std::vector<int> seeds(n);
+  std::iota(seeds.begin(), seeds.end(), 0);
+  std::stable_sort(seeds.begin(), seeds.end(),
+                   [&](int a, int b) { return anisotropy[a] > anisotropy[b]; });
+  std::vector<char> taken(n, 0);
+  // the next node from `from`: its strongest free neighbour, if strong enough
+  auto next_of = [&](int from) {
+    int best = -1;
+    double best_weight = 0.0;
+    for (int j : adj[from]) {
+      if (!taken[j] && weight(from, j) > best_weight) {
+        best = j;
+        best_weight = weight(from, j);
+      }
+    }
+    return best_weight >= ratio * weakest[from] ? best : -1;
+  };
+  std::vector<std::vector<int>> lines;
+  for (int seed : seeds) {
+    if (taken[seed] || anisotropy[seed] < ratio) continue;
+    taken[seed] = 1;
+    std::vector<int> forward{seed}, backward;
+    for (int c = next_of(seed); c >= 0; c = next_of(c)) {
+      taken[c] = 1;
+      forward.push_back(c);
+    }
+    for (int c = next_of(seed); c >= 0; c = next_of(c)) {
+      taken[c] = 1;
+      backward.push_back(c);
+    }
+    if (forward.size() + backward.size() < 2) {
+      taken[seed] = 0;  // a single node is no line; it may still join one grown later
+      continue;
+    }
+    std::vector<int> line(backward.rbegin(), backward.rend());
+    line.insert(line.end(), forward.begin(), forward.end());
+    lines.push_back(std::move(line));
+  }
+  return lines;
+}
+
+std::vector<int> line_ordering(const std::vector<int>& base,
+                               const std::vector<std::vector<int>>& lines) {
+  const int n = static_cast<int>(base.size());
+  std::vector<int> old_of_base(n);
+  for (int k = 0; k < n; ++k) old_of_base[base[k]] = k;
+  std::vector<int> line_of(n, -1);
+  for (std::size_t l = 0; l < lines.size(); ++l) {
+    for (int node : lines[l]) line_of[node] = static_cast<int>(l);
+  }
+  std::vector<int> new_of_old(n, -1);
+  int next = 0;
+  for (int k = 0; k < n; ++k) {
+    const int node = old_of_base[k];
+    if (new_of_old[node] >= 0) continue;
+    if (line_of[node] < 0) {
+      new_of_old[node] = next++;
+      continue;
+    }
+    const auto& line = lines[line_of[node]];
+    if (base[line.front()] <= base[line.back()]) {
+      for (int m : line) new_of_old[m] = next++;
+    } else {
+      for (auto it = line.rbegin(); it != line.rend(); ++it) new_of_old[*it] = next++;
+    }
+  }
   return new_of_old;
 }
 

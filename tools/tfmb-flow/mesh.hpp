@@ -53,6 +53,24 @@ namespace tfmb::flow {
 // a stronger preconditioner and the edge loops cache friendly.
 std::vector<int> rcm_ordering(const Mesh& mesh);
 
+// Lines of strongly coupled nodes in stretched cells (Mavriplis 1998, "Multigrid strategies for
+// viscous flow solvers on anisotropic unstructured meshes", J. Comput. Phys. 145:141, sec. 4):
+// each node's edges are weighted by their inverse length; from the most anisotropic free node
+// (largest ratio of its strongest to its weakest edge), a line grows both ways by following the
+// strongest edge to a free neighbour while that edge's weight is at least `ratio` times the
+// weakest of the current node's edges. In a boundary
+// layer of flat cells the lines are the wall-normal columns. Returns the lines of two or more
+// nodes, each in its order along the line.
+std::vector<std::vector<int>> strong_coupling_lines(const Mesh& mesh, double ratio = 4.0);
+
+// An ordering (new_of_old) that keeps each line contiguous: the nodes are taken in the order
+// `base` (new_of_old, e.g. rcm_ordering) and a node on a line brings its whole line with it,
+// starting from the line's end that comes first in `base`. Incomplete factorisations then hold
+// the tridiagonal coupling along each line exactly (a line-implicit preconditioner inside the
+// ILU).
+std::vector<int> line_ordering(const std::vector<int>& base,
+                               const std::vector<std::vector<int>>& lines);
+
 // Applies a node permutation (new_of_old) to points, cells and boundary curves.
 void renumber_nodes(Mesh& mesh, const std::vector<int>& new_of_old);
 

@@ -203,6 +203,7 @@ class FlowStage {
   void configure() {
     settings = o.settings;
     settings.renumber = o.renumber;
+    settings.renumber_lines = o.node_ordering == "lines";
     settings.viscous = viscous;
     settings.turbulent = turbulent;
     settings.sa_ft2 = o.model != "sa-noft2";

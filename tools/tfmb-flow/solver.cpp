@@ -73,6 +73,8 @@ FlowSolver::FlowSolver(const Mesh& mesh, Geometry geometry, const PerfectGas& ga
     new_of_old_[k] = static_cast<int>(k);
   if (settings_.renumber) {
     new_of_old_ = rcm_ordering(mesh_);
+    if (settings_.renumber_lines)
+      new_of_old_ = line_ordering(new_of_old_, strong_coupling_lines(mesh_));
     renumber_nodes(mesh_, new_of_old_);
   }
   old_of_new_.resize(new_of_old_.size());

@@ -176,6 +176,10 @@ struct SolverSettings {
   // Renumber the nodes internally (reverse Cuthill-McKee): a banded matrix makes ILU(0) a much
   // stronger preconditioner. Node ids at the interface stay those of the mesh given.
   bool renumber = true;
+  // With renumber: the lines of strongly coupled nodes (wall-normal columns of stretched
+  // boundary-layer cells, strong_coupling_lines) kept contiguous in the RCM order, so that the
+  // incomplete factorisation solves along them exactly.
+  bool renumber_lines = false;
 };
 
 struct IterationRecord {
