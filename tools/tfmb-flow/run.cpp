@@ -270,6 +270,11 @@ class FlowStage {
     };
     solver_ = std::make_unique<FlowSolver>(lm.mesh, lm.geometry, gas, bcs, settings);
     FlowSolver& solver = *solver_;
+    if (settings.renumber_lines) {
+      log.info("node ordering: " + std::to_string(solver.ordering_lines()) +
+               " lines of strongly coupled nodes (" + std::to_string(solver.ordering_line_nodes()) +
+               " of " + std::to_string(solver.dual().num_nodes) + " nodes) kept contiguous");
+    }
     if (from_restart) {
       solver.set_primitive(primitive_states(*restart));
       if (sst_model) {

@@ -73,8 +73,13 @@ FlowSolver::FlowSolver(const Mesh& mesh, Geometry geometry, const PerfectGas& ga
     new_of_old_[k] = static_cast<int>(k);
   if (settings_.renumber) {
     new_of_old_ = rcm_ordering(mesh_);
-    if (settings_.renumber_lines)
-      new_of_old_ = line_ordering(new_of_old_, strong_coupling_lines(mesh_));
+    if (settings_.renumber_lines) {
+      const auto lines = strong_coupling_lines(mesh_);
+      new_of_old_ = line_ordering(new_of_old_, lines);
+      ordering_lines_ = static_cast<int>(lines.size());
+      for (const auto& line : lines)
+        ordering_line_nodes_ += static_cast<int>(line.size());
+    }
     renumber_nodes(mesh_, new_of_old_);
   }
   old_of_new_.resize(new_of_old_.size());

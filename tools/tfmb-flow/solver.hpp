@@ -360,6 +360,9 @@ class FlowSolver {
   std::vector<WallTrace> wall_traces(const std::vector<int>& curves);  // same, several at once
 
   const DualMesh& dual() const { return dual_; }
+  // settings.renumber_lines: the lines kept contiguous and the nodes on them
+  int ordering_lines() const { return ordering_lines_; }
+  int ordering_line_nodes() const { return ordering_line_nodes_; }
   const PerfectGas& gas() const { return gas_; }
 
  private:
@@ -452,6 +455,7 @@ class FlowSolver {
 
   Mesh mesh_;  // internal numbering
   std::vector<int> new_of_old_, old_of_new_;
+  int ordering_lines_ = 0, ordering_line_nodes_ = 0;
   std::vector<Vec2> coords_external_;
   DualMesh dual_;
   PerfectGas gas_;
