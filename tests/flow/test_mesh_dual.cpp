@@ -4,9 +4,9 @@
 #include <cmath>
 
 #include "mesh_generate.hpp"
+#include "test_meshes.hpp"
 #include "tfmb-flow/mesh.hpp"
 #include "tfmb-flow/mesh_dual.hpp"
-#include "test_meshes.hpp"
 
 using namespace tfmb::flow;
 

@@ -159,8 +159,10 @@ std::vector<std::vector<int>> strong_coupling_lines(const Mesh& mesh, double rat
       adj[b].push_back(a);
     }
   };
-  for (const auto& t : mesh.triangles) link(t.data(), 3);
-  for (const auto& q : mesh.quads) link(q.data(), 4);
+  for (const auto& t : mesh.triangles)
+    link(t.data(), 3);
+  for (const auto& q : mesh.quads)
+    link(q.data(), 4);
   std::vector<double> weakest(n, 0.0), anisotropy(n, 0.0);
   auto weight = [&](int a, int b) { return 1.0 / norm(mesh.points[b] - mesh.points[a]); };
   for (int i = 0; i < n; ++i) {
@@ -196,7 +198,8 @@ std::vector<std::vector<int>> strong_coupling_lines(const Mesh& mesh, double rat
   };
   std::vector<std::vector<int>> lines;
   for (int seed : seeds) {
-    if (taken[seed] || anisotropy[seed] < ratio) continue;
+    if (taken[seed] || anisotropy[seed] < ratio)
+      continue;
     taken[seed] = 1;
     std::vector<int> forward{seed}, backward;
     for (int c = next_of(seed); c >= 0; c = next_of(c)) {
@@ -222,25 +225,30 @@ std::vector<int> line_ordering(const std::vector<int>& base,
                                const std::vector<std::vector<int>>& lines) {
   const int n = static_cast<int>(base.size());
   std::vector<int> old_of_base(n);
-  for (int k = 0; k < n; ++k) old_of_base[base[k]] = k;
+  for (int k = 0; k < n; ++k)
+    old_of_base[base[k]] = k;
   std::vector<int> line_of(n, -1);
   for (std::size_t l = 0; l < lines.size(); ++l) {
-    for (int node : lines[l]) line_of[node] = static_cast<int>(l);
+    for (int node : lines[l])
+      line_of[node] = static_cast<int>(l);
   }
   std::vector<int> new_of_old(n, -1);
   int next = 0;
   for (int k = 0; k < n; ++k) {
     const int node = old_of_base[k];
-    if (new_of_old[node] >= 0) continue;
+    if (new_of_old[node] >= 0)
+      continue;
     if (line_of[node] < 0) {
       new_of_old[node] = next++;
       continue;
     }
     const auto& line = lines[line_of[node]];
     if (base[line.front()] <= base[line.back()]) {
-      for (int m : line) new_of_old[m] = next++;
+      for (int m : line)
+        new_of_old[m] = next++;
     } else {
-      for (auto it = line.rbegin(); it != line.rend(); ++it) new_of_old[*it] = next++;
+      for (auto it = line.rbegin(); it != line.rend(); ++it)
+        new_of_old[*it] = next++;
     }
   }
   return new_of_old;

@@ -35,7 +35,7 @@ struct RunOptions {
   // Start state without a restart: uniform | quasi-1d | auto (quasi-1d for an internal flow).
   std::string initial_state = "uniform";
   bool renumber = true;               // reverse Cuthill-McKee node order inside the solver
-  std::string node_ordering = "rcm";            // rcm | lines (SolverSettings::renumber_lines)
+  std::string node_ordering = "rcm";  // rcm | lines (SolverSettings::renumber_lines)
   // Second order without a restart file: converge first order first (same settings, its own
   // iteration limit), then continue at second order from that state, as a restart would.
   bool first_order_start = false;
