@@ -80,9 +80,10 @@ void check_mesh(const Mesh& mesh) {
 
 namespace tfmb::flow {
 
-std::vector<int> rcm_ordering(const Mesh& mesh) {
-  const int n = mesh.num_points();
-  std::vector<std::vector<int>> adj(n);
+namespace {
+// The neighbours of each node through the cells' edges, sorted, each once.
+std::vector<std::vector<int>> node_neighbours(const Mesh& mesh) {
+  std::vector<std::vector<int>> adj(mesh.num_points());
   auto link = [&](const int* ids, int nv) {
     for (int k = 0; k < nv; ++k) {
       const int a = ids[k], b = ids[(k + 1) % nv];
@@ -90,12 +91,21 @@ std::vector<int> rcm_ordering(const Mesh& mesh) {
       adj[b].push_back(a);
     }
   };
-  for (const auto& t : mesh.triangles) link(t.data(), 3);
-  for (const auto& q : mesh.quads) link(q.data(), 4);
+  for (const auto& t : mesh.triangles)
+    link(t.data(), 3);
+  for (const auto& q : mesh.quads)
+    link(q.data(), 4);
   for (auto& a : adj) {
     std::sort(a.begin(), a.end());
     a.erase(std::unique(a.begin(), a.end()), a.end());
   }
+  return adj;
+}
+}  // namespace
+
+std::vector<int> rcm_ordering(const Mesh& mesh) {
+  const int n = mesh.num_points();
+  const std::vector<std::vector<int>> adj = node_neighbours(mesh);
   std::vector<int> order;
   order.reserve(n);
   std::vector<char> seen(n, 0);
@@ -151,24 +161,11 @@ std::vector<int> rcm_ordering(const Mesh& mesh) {
 
 std::vector<std::vector<int>> strong_coupling_lines(const Mesh& mesh, double ratio) {
   const int n = mesh.num_points();
-  std::vector<std::vector<int>> adj(n);
-  auto link = [&](const int* ids, int nv) {
-    for (int k = 0; k < nv; ++k) {
-      const int a = ids[k], b = ids[(k + 1) % nv];
-      adj[a].push_back(b);
-      adj[b].push_back(a);
-    }
-  };
-  for (const auto& t : mesh.triangles)
-    link(t.data(), 3);
-  for (const auto& q : mesh.quads)
-    link(q.data(), 4);
+  const std::vector<std::vector<int>> adj = node_neighbours(mesh);
   std::vector<double> weakest(n, 0.0), anisotropy(n, 0.0);
   auto weight = [&](int a, int b) { return 1.0 / norm(mesh.points[b] - mesh.points[a]); };
   for (int i = 0; i < n; ++i) {
-    auto& a = adj[i];
-    std::sort(a.begin(), a.end());
-    a.erase(std::unique(a.begin(), a.end()), a.end());
+    const auto& a = adj[i];
     double smallest = std::numeric_limits<double>::infinity(), largest = 0.0;
     for (int j : a) {
       smallest = std::min(smallest, weight(i, j));
