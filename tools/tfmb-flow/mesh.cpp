@@ -221,9 +221,9 @@ std::vector<std::vector<int>> strong_coupling_lines(const Mesh& mesh, double rat
 std::vector<int> line_ordering(const std::vector<int>& base,
                                const std::vector<std::vector<int>>& lines) {
   const int n = static_cast<int>(base.size());
-  std::vector<int> old_of_base(n);
+  std::vector<int> node_at(n);  // the node at each position of `base`
   for (int k = 0; k < n; ++k)
-    old_of_base[base[k]] = k;
+    node_at[base[k]] = k;
   std::vector<int> line_of(n, -1);
   for (std::size_t l = 0; l < lines.size(); ++l) {
     for (int node : lines[l])
@@ -232,7 +232,7 @@ std::vector<int> line_ordering(const std::vector<int>& base,
   std::vector<int> new_of_old(n, -1);
   int next = 0;
   for (int k = 0; k < n; ++k) {
-    const int node = old_of_base[k];
+    const int node = node_at[k];
     if (new_of_old[node] >= 0)
       continue;
     if (line_of[node] < 0) {

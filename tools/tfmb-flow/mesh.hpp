@@ -58,9 +58,8 @@ std::vector<int> rcm_ordering(const Mesh& mesh);
 // each node's edges are weighted by their inverse length; from the most anisotropic free node
 // (largest ratio of its strongest to its weakest edge), a line grows both ways by following the
 // strongest edge to a free neighbour while that edge's weight is at least `ratio` times the
-// weakest of the current node's edges. In a boundary
-// layer of flat cells the lines are the wall-normal columns. Returns the lines of two or more
-// nodes, each in its order along the line.
+// weakest of the current node's edges. In a boundary layer of flat cells the lines are the
+// wall-normal columns. Returns the lines of two or more nodes, each in its order along the line.
 std::vector<std::vector<int>> strong_coupling_lines(const Mesh& mesh, double ratio = 4.0);
 
 // An ordering (new_of_old) that keeps each line contiguous: the nodes are taken in the order
