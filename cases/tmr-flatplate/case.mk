@@ -16,10 +16,12 @@
 # stopped at its 80 iterations leaving 0.4-0.9 of the residual, and the 545 x 385 level stalled at
 # a drop of about 4e-6; with ILU(2) it converges 8 orders in 107 iterations, and 273 x 193 takes
 # 83 instead of 87 in 0.88 of the time (1,711 linear iterations instead of 3,035; 535 MB
-# instead of 467).
+# instead of 467). --node-ordering lines: the wall-normal lines of the wall layers kept together
+# in the ILU, which takes 545 x 385 under its 100-iteration target with the same Cf and CD
+# (README.md).
 ANALYSIS = flow
 FLOW_MODEL = sa
-FLOW_OPTS = --threads 2 --turbulence-coupling auto --cfl-max 1e7 --limiter-rise-iterations 5 --ilu-fill 2
+FLOW_OPTS = --threads 2 --turbulence-coupling auto --cfl-max 1e7 --limiter-rise-iterations 5 --ilu-fill 2 --node-ordering lines
 # Pictures: Cf(x) against the TMR's finest-grid (545 x 385) SA results of FUN3D and CFL3D
 # (refdata/flow/tmr_flatplate_sa_cf_vs_x_545x385.csv); x is in TMR grid units, L = 1 m.
 PLOT_REFERENCE = \
