@@ -198,15 +198,16 @@ std::vector<std::vector<int>> strong_coupling_lines(const Mesh& mesh, double rat
     if (taken[seed] || anisotropy[seed] < ratio)
       continue;
     taken[seed] = 1;
+    // from the seed along its strongest edge, then the other way from the seed again
+    auto grow = [&](std::vector<int>& into) {
+      for (int c = next_of(seed); c >= 0; c = next_of(c)) {
+        taken[c] = 1;
+        into.push_back(c);
+      }
+    };
     std::vector<int> forward{seed}, backward;
-    for (int c = next_of(seed); c >= 0; c = next_of(c)) {
-      taken[c] = 1;
-      forward.push_back(c);
-    }
-    for (int c = next_of(seed); c >= 0; c = next_of(c)) {
-      taken[c] = 1;
-      backward.push_back(c);
-    }
+    grow(forward);
+    grow(backward);
     if (forward.size() + backward.size() < 2) {
       taken[seed] = 0;  // a single node is no line; it may still join one grown later
       continue;
