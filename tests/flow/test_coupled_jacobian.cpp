@@ -30,7 +30,8 @@ using namespace tfmb::flow;
 
 namespace {
 
-FlowSolver developed_channel(bool exact_sa) {
+// The channel's solver with the test's settings, changed by `adjust` (e.g. the coupling).
+FlowSolver channel_solver(bool exact_sa, void (*adjust)(SolverSettings&) = nullptr) {
   StructuredMeshSpec spec;
   spec.ni = 25;
   spec.nj = 17;
@@ -60,7 +61,13 @@ FlowSolver developed_channel(bool exact_sa) {
   s.max_iterations = 40;
   s.residual_drop = 1e-12;
   s.reference_state = {1.16, 347.0, 347.0, 1.0e5};
-  FlowSolver solver(structured_mesh(spec), Geometry::planar, gas, {wall, out, top, in}, s);
+  if (adjust)
+    adjust(s);
+  return FlowSolver(structured_mesh(spec), Geometry::planar, gas, {wall, out, top, in}, s);
+}
+
+FlowSolver developed_channel(bool exact_sa) {
+  FlowSolver solver = channel_solver(exact_sa);
   solver.set_uniform({1.16, 60.0, 0.0, 1.0e5});
   solver.solve();
   return solver;
@@ -187,4 +194,56 @@ TEST(SegregatedSpalartAllmaras, StepChangesNuTildeByAtMostItsLimit) {
   std::printf("largest nu_tilde change over its limit: %.6f\n", worst);
   EXPECT_LE(worst, 1.0 + 1e-9);
   EXPECT_GT(worst, 0.5);  // the step did move nu_tilde: the limit was reached somewhere
+}
+
+// The coupled step's physicality limit on nu_tilde (max_turbulence_update of |nu_tilde| + nu per
+// step) relaxes the whole node by default and nu_tilde's update alone with
+// limit_turbulence_alone (--turbulence-step-limit nu-tilde). From the developed channel with
+// nu_tilde cut to 1e-3 of itself, one coupled step at CFL 1e4: both keep nu_tilde's change
+// within its limit; the node limit takes a small fraction of the mean flow's step where it
+// binds, nu_tilde alone leaves that step whole.
+TEST(CoupledSpalartAllmaras, StepLimitOnNuTildeAloneLeavesTheMeanFlowStepWhole) {
+  const FlowSolver developed = developed_channel(true);
+  const std::vector<State> w = developed.primitive();
+  std::vector<double> nu_tilde = developed.nu_tilde();
+  for (double& v : nu_tilde)
+    v *= 1e-3;
+  const PerfectGas gas{1.4, 287.05};
+  const SolverSettings defaults;
+  struct Step {
+    double worst_nu_change = 0.0;  // largest nu_tilde change over its limit
+    double least_relaxation = 1.0;
+  };
+  auto one_coupled_step = [&](void (*adjust)(SolverSettings&)) {
+    FlowSolver solver = channel_solver(true, adjust);
+    solver.set_primitive(w);
+    solver.set_nu_tilde(nu_tilde);
+    solver.set_inner_iteration_control(1, 1e-12, 1e4, 0);
+    const SolveReport report = solver.solve();
+    const std::vector<double> stepped = solver.nu_tilde();
+    Step step;
+    step.least_relaxation = report.least_relaxation;
+    for (std::size_t i = 0; i < w.size(); ++i) {
+      const double nu = defaults.viscosity.viscosity(w[i][3] / (gas.R * w[i][0])) / w[i][0];
+      const double limit = defaults.max_turbulence_update * (std::abs(nu_tilde[i]) + nu);
+      step.worst_nu_change =
+          std::max(step.worst_nu_change, std::abs(stepped[i] - nu_tilde[i]) / limit);
+    }
+    return step;
+  };
+  const Step node = one_coupled_step(
+      [](SolverSettings& s) { s.turbulence_coupling = TurbulenceCoupling::coupled; });
+  const Step alone = one_coupled_step([](SolverSettings& s) {
+    s.turbulence_coupling = TurbulenceCoupling::coupled;
+    s.limit_turbulence_alone = true;
+  });
+  std::printf(
+      "node limit: nu_tilde change %.6f of its limit, least relaxation %.3g; nu_tilde "
+      "alone: %.6f, %.3g\n",
+      node.worst_nu_change, node.least_relaxation, alone.worst_nu_change, alone.least_relaxation);
+  EXPECT_LE(node.worst_nu_change, 1.0 + 1e-9);
+  EXPECT_LE(alone.worst_nu_change, 1.0 + 1e-9);
+  EXPECT_GT(alone.worst_nu_change, 0.5);  // the limit was reached somewhere
+  EXPECT_LT(node.least_relaxation, 0.5);  // ... and relaxed that node's mean flow with it
+  EXPECT_EQ(alone.least_relaxation, 1.0);
 }

@@ -126,6 +126,11 @@ int main(int argc, char** argv) {
             "every cross term) or auto (segregated until the density residual has fallen by "
             "--coupling-switch-drop, coupled from then on)",
             CLI::IsMember({"segregated", "coupled", "auto"}));
+  table.add("--turbulence-step-limit", o.turbulence_step_limit, "",
+            "coupled SA steps: where nu_tilde would change by more than its scale "
+            "|nu_tilde| + nu, node (the whole node's update is relaxed, mean flow too) or "
+            "nu-tilde (nu_tilde's own update only; the mean flow takes its step)",
+            CLI::IsMember({"node", "nu-tilde"}));
   table.add("--turbulence-jacobian", o.turbulence_jacobian, "",
             "SA: linearisation of the nu_tilde equation in the implicit operator: exact (the "
             "diffusion with d(nu + nu_tilde)/d nu_tilde and the whole source derivative) or "

@@ -221,6 +221,7 @@ class FlowStage {
                                    : o.turbulence_coupling == "auto"
                                        ? TurbulenceCoupling::automatic
                                        : TurbulenceCoupling::segregated;
+    settings.limit_turbulence_alone = o.turbulence_step_limit == "nu-tilde";
     if (sst_model && settings.turbulence_coupling != TurbulenceCoupling::segregated) {
       // a case's options may be written for SA; the same case run under SST keeps them
       log.info("--turbulence-coupling " + o.turbulence_coupling +

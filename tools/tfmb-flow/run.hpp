@@ -60,6 +60,7 @@ struct RunOptions {
   // moved far from the restart state is not lost to that state.
   bool restart_fallback = true;
   std::string turbulence_coupling = "segregated";  // segregated | coupled | auto (SA)
+  std::string turbulence_step_limit = "node";      // node | nu-tilde (coupled SA steps)
   std::string matrix_free = "auto";                // false | true | auto (second order)
   std::string turbulence_jacobian = "exact";       // exact | m-matrix (SA's own linearisation)
   std::string roe_jacobian = "frozen";             // frozen | exact-first-order | exact

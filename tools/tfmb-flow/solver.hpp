@@ -132,6 +132,11 @@ struct SolverSettings {
   double max_relative_update = 0.5;  // largest relative change of rho or p per node and iteration
   // Coupled SA: largest change of nu_tilde per node and iteration relative to |nu_tilde| + nu.
   double max_turbulence_update = 1.0;
+  // ... and what that limit relaxes: the whole node (mean flow too), or nu_tilde's own update
+  // only (FlowSolver::turbulence_relaxation). nu_tilde alone lets the mean flow take whole steps
+  // where nu_tilde moves fast (the plume's shear layers); with the RCM ordering it froze the
+  // nodes at Back-Massier-Gier's exit corner (README, "Coupled SA Newton step").
+  bool limit_turbulence_alone = false;
   // Fraction of nodes whose update may be relaxed without slowing the CFL ramp.
   double relaxed_fraction_tolerated = 0.002;
   // Jacobian of the Roe flux in the assembled operator: the dissipation matrix held fixed, or
@@ -447,6 +452,7 @@ class FlowSolver {
   GmresResult newton_krylov_solve(SolveLoop& s);
   void relax_update(SolveLoop& s);
   double node_relaxation(int i, const double* du_i, bool coupled, State& un) const;
+  double turbulence_relaxation(int i, double du_nu, double omega_i) const;
   void accept_or_reject_step(SolveLoop& s);
   void report_progress(SolveLoop& s);
   bool march_stopped(SolveLoop& s);  // true: the run gives up
