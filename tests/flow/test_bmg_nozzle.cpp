@@ -263,6 +263,8 @@ ViscousRun run_viscous(int ni, int nj, double dy1, int order, int max_iterations
     s.sa_exact_jacobian = std::atoi(c) != 0;
   if (const char* c = std::getenv("BMG_LINES"))  // 1: --node-ordering lines
     s.renumber_lines = std::atoi(c) == 1;
+  if (const char* c = std::getenv("BMG_NU_TILDE_LIMIT"))  // 1: --turbulence-step-limit nu-tilde
+    s.limit_turbulence_alone = std::atoi(c) == 1;
   if (const char* c = std::getenv("BMG_ILU_FILL"))
     s.ilu_fill_level = std::atoi(c);
   if (const char* c = std::getenv("BMG_ROE_JACOBIAN"))  // 0 frozen, 1 exact-first-order, 2 exact
