@@ -277,6 +277,8 @@ void read_object(hid_t file, const std::string& path, std::set<haddr_t>& seen,
   }
 }
 
+std::chrono::seconds guard_base_limit{10};  // set_guard_time_limit()
+
 // Reads the whole file in a child process; throws DamagedFile if the child crashes or hangs.
 // Returns without a verdict where no child can be made (the reads then run unguarded).
 void read_in_guarded_child(const std::filesystem::path& file) {
@@ -322,7 +324,7 @@ void read_in_guarded_child(const std::filesystem::path& file) {
   // loop; it grows with the file for chunked data read from a slow disk.
   std::error_code ec;
   const auto bytes = std::filesystem::file_size(file, ec);
-  const auto limit = std::chrono::seconds(10 + (ec ? 0 : bytes / 10'000'000));
+  const auto limit = guard_base_limit + std::chrono::seconds(ec ? 0 : bytes / 10'000'000);
   const auto deadline = std::chrono::steady_clock::now() + limit;
   bool hung = false;
   for (;;) {
@@ -379,6 +381,10 @@ bool is_hdf5_file(const std::filesystem::path& file) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec)) return false;
   return H5Fis_hdf5(file.c_str()) > 0;
+}
+
+void set_guard_time_limit(std::chrono::seconds base) {
+  guard_base_limit = base;
 }
 
 // ---------------------------------------------------------------------------------------------

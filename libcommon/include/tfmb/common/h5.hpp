@@ -12,6 +12,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -193,5 +194,11 @@ class Writer {
 
 // True if the file starts with the HDF5 signature.
 bool is_hdf5_file(const std::filesystem::path& file);
+
+// A Reader first reads the whole file in a child process and refuses it as damaged if that child
+// crashes or runs longer than this limit plus a second per 10 MB of file (a loop in damaged
+// metadata). Default 10 s; tests that feed such a loop set a short one, since how long a finite
+// loop runs depends on the machine's speed.
+void set_guard_time_limit(std::chrono::seconds base);
 
 }  // namespace tfmb::h5
