@@ -201,7 +201,8 @@ TEST(SegregatedSpalartAllmaras, StepChangesNuTildeByAtMostItsLimit) {
 // limit_turbulence_alone (--turbulence-step-limit nu-tilde). From the developed channel with
 // nu_tilde cut to 1e-3 of itself, one coupled step at CFL 1e4: both keep nu_tilde's change
 // within its limit; the node limit takes a small fraction of the mean flow's step where it
-// binds, nu_tilde alone leaves that step whole.
+// binds, nu_tilde alone leaves that step whole. A limit of 3 (--turbulence-update-limit) lets
+// nu_tilde change by up to 3 of its scale |nu_tilde| + nu.
 TEST(CoupledSpalartAllmaras, StepLimitOnNuTildeAloneLeavesTheMeanFlowStepWhole) {
   const FlowSolver developed = developed_channel(true);
   const std::vector<State> w = developed.primitive();
@@ -246,4 +247,15 @@ TEST(CoupledSpalartAllmaras, StepLimitOnNuTildeAloneLeavesTheMeanFlowStepWhole) 
   EXPECT_GT(alone.worst_nu_change, 0.5);  // the limit was reached somewhere
   EXPECT_LT(node.least_relaxation, 0.5);  // ... and relaxed that node's mean flow with it
   EXPECT_EQ(alone.least_relaxation, 1.0);
+  // --turbulence-update-limit 3: nu_tilde may change by 3 of its scale, and does somewhere
+  const Step wide = one_coupled_step([](SolverSettings& s) {
+    s.turbulence_coupling = TurbulenceCoupling::coupled;
+    s.limit_turbulence_alone = true;
+    s.max_turbulence_update = 3.0;
+  });
+  std::printf("nu_tilde alone, limit 3: nu_tilde change %.6f of its scale, least relaxation %.3g\n",
+              wide.worst_nu_change, wide.least_relaxation);
+  EXPECT_LE(wide.worst_nu_change, 3.0 + 1e-9);
+  EXPECT_GT(wide.worst_nu_change, 1.5);
+  EXPECT_EQ(wide.least_relaxation, 1.0);
 }

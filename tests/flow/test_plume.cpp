@@ -139,3 +139,49 @@ TEST(FlowPlume, SonicJetIntoAirAtRestConvergesAtSecondOrderWithFarFieldDownstrea
 TEST(FlowPlume, FinerSonicJetIntoAirAtRestConvergesAtFirstOrder) {
   expect_plume_converges(plume_mesh(20, 50, 20, 0.505, 1.06, 0.025));
 }
+
+// The inflow ramp's hold (SolverSettings::inflow_ramp_hold_mach): an 8-iteration ramp to NPR
+// 5.4 drives the inflow face of the empty duct from Mach 0.09 at iteration 2 to 0.58 at 6 and
+// 0.70 at 8 (measured). With the hold at Mach 0.5 the ramp waits from iteration 6. This straight
+// duct chokes at its exit, so its steady inflow is sonic and the Mach number keeps rising while
+// the ramp waits (0.95 by iteration 22): the hold ends after as many iterations as the ramp has,
+// and the run converges to the same choked mass flow.
+TEST(FlowPlume, InflowRampHoldsWhileTheInflowRunsFast) {
+  const PlumeMesh pm = plume_mesh(12, 30, 10, 0.52, 1.08, 0.05);
+  const PerfectGas gas;
+  const double p_amb = 101325.0, t_amb = 288.15, p0 = 5.4 * p_amb, t0 = 750.0;
+  const State w_amb{p_amb / (gas.R * t_amb), 0.0, 0.0, p_amb};
+  BoundaryCondition sym, out, far, in, wall;
+  sym.kind = BcKind::symmetry;
+  out.kind = BcKind::pressure_outflow;
+  out.static_pressure = p_amb;
+  far.kind = BcKind::farfield;
+  far.freestream = w_amb;
+  in.kind = BcKind::stagnation_inflow;
+  in.total_pressure = p0;
+  in.total_temperature = t0;
+  wall.kind = BcKind::slip_wall;
+  const double c_amb = std::sqrt(gas.gamma * p_amb / w_amb[0]);
+  auto run = [&](double hold_mach) {
+    SolverSettings s;
+    s.order = 1;
+    s.max_iterations = 400;
+    s.reference_state = {w_amb[0], c_amb, c_amb, p_amb};
+    s.inflow_ramp_iterations = 8;
+    s.inflow_ramp_start_pressure = p_amb;
+    s.inflow_ramp_hold_mach = hold_mach;
+    FlowSolver solver(pm.mesh, Geometry::planar, gas, {sym, out, far, far, in, wall}, s);
+    solver.set_uniform(w_amb);
+    const SolveReport r = solver.solve();
+    EXPECT_TRUE(r.converged) << "hold " << hold_mach << ": residual drop " << r.residual_drop;
+    return std::pair{r, -solver.boundary_integral(4).mass_flow};
+  };
+  const auto [free_ramp, free_mass_flow] = run(0.0);
+  const auto [held_ramp, held_mass_flow] = run(0.5);
+  EXPECT_EQ(free_ramp.inflow_ramp_end, 8);
+  EXPECT_EQ(free_ramp.inflow_ramp_held, 0);
+  EXPECT_GT(held_ramp.inflow_ramp_held, 0);
+  EXPECT_EQ(held_ramp.inflow_ramp_held, 8);
+  EXPECT_EQ(held_ramp.inflow_ramp_end, 8 + 8);
+  EXPECT_NEAR(held_mass_flow / free_mass_flow, 1.0, 1e-6);
+}

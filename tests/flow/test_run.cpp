@@ -2,6 +2,7 @@
 // read back; restart; bad inputs exit with BadInput (code 3).
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <filesystem>
 #include <set>
 #include <sstream>
@@ -370,6 +371,51 @@ TEST(FlowRun, FirstOrderStartThenSecondOrder) {
   EXPECT_GT(r.report.iterations, r1.report.iterations);
   EXPECT_NEAR(r.mass_flow, r2.mass_flow, 1e-4 * r2.mass_flow);
   EXPECT_NEAR(r.thrust_x, r2.thrust_x, 1e-4 * std::abs(r2.thrust_x));
+  std::filesystem::remove_all(dir);
+}
+
+// --second-order-cfl-start: the second stage starts at its own CFL number, the first at
+// --cfl-start, and the run converges to the same flow.
+TEST(FlowRun, SecondOrderStageStartsAtItsOwnCflNumber) {
+  const auto dir = temp_dir();
+  write_flowmesh(dir / "flowmesh.h5", nparc::make_mesh(61, 16));
+  struct Stages {
+    RunResult result;
+    double first_cfl = 0.0, second_cfl = 0.0;  // each stage's first CFL number
+  };
+  auto two_stages = [&](std::optional<double> second_cfl, const char* name) {
+    std::ostringstream log_text;
+    const Logger log("tfmb-flow", Verbosity::normal, log_text);
+    RunOptions o = nozzle_options(dir);
+    o.settings.order = 2;
+    o.first_order_start = true;
+    o.second_order_cfl_start = second_cfl;
+    o.output = dir / name;
+    Stages stages{run(o, log)};
+    // the first stage's length, from its log line "first-order start: converged in N iterations"
+    const std::string text = log_text.str();
+    const std::size_t at = text.find("first-order start: converged in ");
+    EXPECT_NE(at, std::string::npos);
+    const auto first_iterations = static_cast<std::size_t>(
+        std::stoi(text.substr(at + std::strlen("first-order start: converged in "))));
+    const auto& history = stages.result.report.history;
+    // a converged stage records its N steps and the residual evaluation that met the criterion
+    EXPECT_LT(first_iterations + 1, history.size());
+    stages.first_cfl = history.front().cfl;
+    stages.second_cfl = history.at(first_iterations + 1).cfl;
+    return stages;
+  };
+  const Stages plain = two_stages(std::nullopt, "plain.h5");
+  const Stages own = two_stages(50.0, "own.h5");
+  ASSERT_TRUE(plain.result.report.converged);
+  ASSERT_TRUE(own.result.report.converged);
+  const double cfl_start = SolverSettings{}.cfl_start;
+  EXPECT_EQ(plain.first_cfl, cfl_start);
+  EXPECT_EQ(plain.second_cfl, cfl_start);
+  EXPECT_EQ(own.first_cfl, cfl_start);
+  EXPECT_EQ(own.second_cfl, 50.0);
+  EXPECT_NEAR(own.result.mass_flow, plain.result.mass_flow, 1e-4 * plain.result.mass_flow);
+  EXPECT_NEAR(own.result.thrust_x, plain.result.thrust_x, 1e-4 * std::abs(plain.result.thrust_x));
   std::filesystem::remove_all(dir);
 }
 

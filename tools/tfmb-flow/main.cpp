@@ -71,6 +71,10 @@ int main(int argc, char** argv) {
             "iterations over which the inflow total pressure rises from the free stream's total "
             "pressure to --p0 (-1: 50 for a jet into a far field above the free stream's total "
             "pressure, else 0)");
+  table.add("--inflow-ramp-hold-mach", o.settings.inflow_ramp_hold_mach, "1",
+            "the inflow ramp holds while the largest Mach number at the inflow's nodes is above "
+            "this (0: never), so that the valve opens no faster than the duct fills",
+            CLI::NonNegativeNumber);
   table.add("--initial-state", o.initial_state, "",
             "start state without --restart: uniform (the free stream; an internal flow from its "
             "inflow total conditions at Mach 0.2), quasi-1d (an internal flow, inflow at the "
@@ -97,6 +101,10 @@ int main(int argc, char** argv) {
                  "with --order 2 and no --restart: converge at first order first, then continue "
                  "at second order from that state (a restart from a first-order run, in one "
                  "call)");
+  table.add("--second-order-cfl-start", o.second_order_cfl_start, "1",
+            "with the first-order start: the second-order stage's initial CFL number and the "
+            "base of its SER law (default: --cfl-start)",
+            CLI::PositiveNumber);
   table.add("--first-order-start-drop", o.first_order_start_drop, "1",
             "with the first-order start: end the first-order stage once its density residual "
             "has fallen by this factor (or by --residual-drop or stationarity, if first)",
@@ -131,6 +139,11 @@ int main(int argc, char** argv) {
             "|nu_tilde| + nu, node (the whole node's update is relaxed, mean flow too) or "
             "nu-tilde (nu_tilde's own update only; the mean flow takes its step)",
             CLI::IsMember({"node", "nu-tilde"}));
+  table.add("--turbulence-update-limit", o.settings.max_turbulence_update, "1",
+            "largest change of nu_tilde per node and iteration relative to |nu_tilde| + nu "
+            "(SST: of k relative to k + its free-stream value); nu_tilde grows at most by the "
+            "factor 1 + this per iteration",
+            CLI::PositiveNumber);
   table.add("--turbulence-jacobian", o.turbulence_jacobian, "",
             "SA: linearisation of the nu_tilde equation in the implicit operator: exact (the "
             "diffusion with d(nu + nu_tilde)/d nu_tilde and the whole source derivative) or "

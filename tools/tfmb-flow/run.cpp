@@ -483,6 +483,8 @@ class FlowStage {
     // the second stage continues the first one's residual drop and starts at full inflow pressure
     solver.set_residual_reference(first.residual_reference);
     solver.set_inflow_ramp(0);
+    if (o.second_order_cfl_start)
+      solver.set_cfl_start(*o.second_order_cfl_start);
     SolveReport second = solve_showing_progress(solver, "second order", settings.max_iterations);
     for (auto& rec : second.history) {
       rec.iteration += first.iterations;

@@ -47,6 +47,11 @@ struct RunOptions {
   // config4's first iterate) ended its first-order stage at 50 iterations and its second-order
   // stage never converged (2,000 iterations); with 1e-3 it does (README, "First-order start").
   double first_order_start_drop = 1e-3;
+  // The second-order stage's initial CFL number (and SER base); unset: --cfl-start. The
+  // first-order stage ends at its CFL ceiling, so the second starts from a converged
+  // first-order state and need not begin at a cold start's CFL number (README, "First-order
+  // start").
+  std::optional<double> second_order_cfl_start;
   // Second order from a restart: `frozen` holds the limiter at the restart state's values from
   // the first iteration (FlowSolver::hold_limiter; with --matrix-free auto, Newton-Krylov from
   // there), `live` evaluates it every iteration. Frozen is for a converged second-order state

@@ -973,6 +973,11 @@ struct FlowSolver::SolveLoop {
   bool release_if_far = false;  // a held limiter, let go at the first iteration if far off
   std::vector<double> target_total_pressure;  // per boundary condition, the ramp's end value
   int ramp = 0;                               // inflow ramp iterations
+  // the ramp's rises so far (ramp_rises / ramp of the way), the iteration it reached the full
+  // pressure (before that: a number past any iteration), and whether it holds this iteration
+  int ramp_rises = 0;
+  int ramp_end = 0;
+  bool ramp_held = false;
   // wall nodes and faces for the stationarity criterion, and their last iteration's values
   std::vector<int> wall_nodes;
   std::vector<const BoundaryFace*> wall_faces;
@@ -1065,6 +1070,7 @@ void FlowSolver::start_run(SolveLoop& s) {
   for (std::size_t b = 0; b < bcs_.size(); ++b)
     s.target_total_pressure[b] = bcs_[b].total_pressure;
   s.ramp = settings_.inflow_ramp_iterations;
+  s.ramp_end = s.ramp > 0 ? std::numeric_limits<int>::max() : 0;
   // wall nodes and faces for the stationarity criterion
   std::vector<char> on_wall(n, 0);
   for (const auto& face : dual_.boundary_faces) {
@@ -1094,7 +1100,7 @@ bool FlowSolver::newton_krylov_step(const SolveLoop& s) const {
 // coupling_switch_drop (see SolverSettings::turbulence_coupling).
 void FlowSolver::switch_turbulence_coupling(SolveLoop& s) {
   if (!s.coupled && settings_.turbulence_coupling == TurbulenceCoupling::automatic &&
-      s.report.residual_drop <= settings_.coupling_switch_drop && s.it > s.ramp) {
+      s.report.residual_drop <= settings_.coupling_switch_drop && s.it > s.ramp_end) {
     s.coupled = turbulence_coupled_ = true;
     s.nb = 5;
     s.rhs.assign(s.nb * static_cast<std::size_t>(s.n), 0.0);
@@ -1108,11 +1114,32 @@ void FlowSolver::switch_turbulence_coupling(SolveLoop& s) {
 }
 
 // The valve opening of a jet started from rest: every stagnation inflow's total pressure at
-// this iteration of the ramp (SolverSettings::inflow_ramp_iterations).
-void FlowSolver::ramp_inflow(const SolveLoop& s) {
-  if (s.ramp <= 0)
+// this iteration of the ramp (SolverSettings::inflow_ramp_iterations), which rises by 1/ramp of
+// the way per iteration unless it holds (SolverSettings::inflow_ramp_hold_mach).
+void FlowSolver::ramp_inflow(SolveLoop& s) {
+  if (s.ramp <= 0 || s.it > s.ramp_end)
     return;
-  const double f = std::min(1.0, static_cast<double>(s.it) / s.ramp);
+  const double mach =
+      s.it > 1 && settings_.inflow_ramp_hold_mach > 0.0 ? largest_inflow_mach() : 0.0;
+  // at most as many iterations held as the ramp has: a duct whose steady inflow Mach number is
+  // above the threshold (a straight duct choked at its exit) would otherwise never open
+  const bool may_hold = s.report.inflow_ramp_held < s.ramp;
+  const bool hold = s.it > 1 && mach > settings_.inflow_ramp_hold_mach && may_hold;
+  if (hold != s.ramp_held && settings_.print_every > 0)
+    std::fprintf(stderr,
+                 hold       ? "iter %5d  inflow ramp held at %.0f %% (inflow Mach %.2f)\n"
+                 : may_hold ? "iter %5d  inflow ramp rising from %.0f %% (inflow Mach %.2f)\n"
+                            : "iter %5d  inflow ramp rising from %.0f %% (inflow Mach %.2f; "
+                              "held as many iterations as the ramp has)\n",
+                 s.it, 100.0 * s.ramp_rises / s.ramp, mach);
+  s.ramp_held = hold;
+  if (hold)
+    ++s.report.inflow_ramp_held;
+  else
+    ++s.ramp_rises;
+  if (s.ramp_rises >= s.ramp)
+    s.ramp_end = s.report.inflow_ramp_end = s.it;
+  const double f = std::min(1.0, static_cast<double>(s.ramp_rises) / s.ramp);
   for (std::size_t b = 0; b < bcs_.size(); ++b) {
     if (bcs_[b].kind != BcKind::stagnation_inflow)
       continue;
@@ -1120,6 +1147,18 @@ void FlowSolver::ramp_inflow(const SolveLoop& s) {
         std::min(settings_.inflow_ramp_start_pressure, s.target_total_pressure[b]);
     bcs_[b].total_pressure = p_start + f * (s.target_total_pressure[b] - p_start);
   }
+}
+
+// The largest Mach number at the nodes of stagnation inflow boundaries.
+double FlowSolver::largest_inflow_mach() const {
+  double mach = 0.0;
+  for (const auto& face : dual_.boundary_faces) {
+    if (bcs_[face.curve].kind != BcKind::stagnation_inflow)
+      continue;
+    const State w = gas_.primitive(u_[face.node]);
+    mach = std::max(mach, std::hypot(w[1], w[2]) / gas_.sound_speed(w));
+  }
+  return mach;
 }
 
 // Non-physical residual: go back to the last good state with a smaller CFL.
@@ -1336,7 +1375,7 @@ bool FlowSolver::wall_stationary(SolveLoop& s) {
                           (report.history.back().linear_residual <= 0.5 &&
                            report.history.back().cfl >= settings_.cfl_start && s.last_omega >= 0.5);
       s.stationary_count = small && moving ? s.stationary_count + 1 : 0;
-      stationary = s.stationary_count >= settings_.stationary_iterations && s.it > s.ramp;
+      stationary = s.stationary_count >= settings_.stationary_iterations && s.it > s.ramp_end;
     }
     s.wall_p_previous = std::move(wall_p);
     s.wall_force_previous = force;
@@ -1352,7 +1391,7 @@ bool FlowSolver::check_convergence(SolveLoop& s) {
   const bool stationary = wall_stationary(s);
   const bool past_transient = !settings_.residual_drop_at_cfl_ceiling || s.cfl >= s.cfl_ceiling;
   if (stationary ||
-      (s.r_max > 0.0 && report.residual_drop <= settings_.residual_drop && s.it > s.ramp &&
+      (s.r_max > 0.0 && report.residual_drop <= settings_.residual_drop && s.it > s.ramp_end &&
        (s.it > 1 || settings_.residual_reference > 0.0) && past_transient)) {
     report.converged_by_stationarity = stationary && report.residual_drop > settings_.residual_drop;
     report.converged = true;

@@ -97,6 +97,14 @@ struct SolverSettings {
   // face sees a shock-tube transient that the implicit pseudo-time march crosses badly.
   int inflow_ramp_iterations = 0;
   double inflow_ramp_start_pressure = 0.0;  // [Pa]
+  // ... and the ramp holds (does not rise this iteration) while the largest Mach number at a
+  // stagnation inflow's nodes is above this (0: never). A valve opened faster than the duct
+  // fills chokes the inflow face: the gas enters at Mach 1, runs supersonic into the duct, and
+  // the normal shock that ends it then crawls out through the inflow in pseudo time (nasa-2dcd
+  // NPR 8.91 with a 35-iteration ramp: inflow Mach above 1 from iteration 11, the shock at the
+  // inflow face at iteration 66, where the 50-iteration ramp had reached a steady state). It
+  // holds for at most inflow_ramp_iterations iterations in all.
+  double inflow_ramp_hold_mach = 0.0;
   int max_iterations = 500;
   double residual_drop = 1e-8;  // converged when the density residual fell by this factor
   // The residual drop counts only at the CFL ceiling: a start-up stage (the first-order start)
@@ -130,7 +138,9 @@ struct SolverSettings {
   int ilu_fill_level = 0;
   int gmres_max_iterations = 80;
   double max_relative_update = 0.5;  // largest relative change of rho or p per node and iteration
-  // Coupled SA: largest change of nu_tilde per node and iteration relative to |nu_tilde| + nu.
+  // SA: largest change of nu_tilde per node and iteration relative to |nu_tilde| + nu (k-omega
+  // SST: of k relative to k + its free-stream value), so nu_tilde grows at most by the factor
+  // 1 + max_turbulence_update per iteration.
   double max_turbulence_update = 1.0;
   // ... and what that limit relaxes: the whole node (mean flow too), or nu_tilde's own update
   // only (FlowSolver::turbulence_relaxation). nu_tilde alone lets the mean flow take whole steps
@@ -245,6 +255,10 @@ struct SolveReport {
   long linear_iterations = 0;
   int backoffs = 0;      // CFL back-offs after non-physical states
   int coupled_from = 0;  // automatic coupling: first coupled iteration (0: none)
+  // inflow ramp: the iteration at which it reached the full pressure (0: no ramp, or not
+  // reached), and the iterations it held (SolverSettings::inflow_ramp_hold_mach)
+  int inflow_ramp_end = 0;
+  int inflow_ramp_held = 0;
   int newton_from = 0;  // MatrixFree::after_limiter_freeze: first Newton-Krylov iteration (0: none)
   int newton_fallbacks = 0;  // ... and its Newton phases abandoned for defect correction
   int best_state_restarts = 0;  // returns to the best state after the march diverged
@@ -350,6 +364,8 @@ class FlowSolver {
                                    int print_every);
   double time_step() const { return time_dt_; }
   void set_inflow_ramp(int iterations) { settings_.inflow_ramp_iterations = iterations; }
+  // The CFL number the next solve() starts from, and the base of its SER law
+  void set_cfl_start(double cfl) { settings_.cfl_start = cfl; }
 
   // Checks of the implicit operator (tests): y = J x for the steady residual at the current
   // state, x and y per node of the mesh given, 4 unknowns per node (5 with
@@ -437,7 +453,8 @@ class FlowSolver {
   void start_run(SolveLoop& s);
   bool newton_krylov_step(const SolveLoop& s) const;  // this step's kind
   void switch_turbulence_coupling(SolveLoop& s);
-  void ramp_inflow(const SolveLoop& s);
+  void ramp_inflow(SolveLoop& s);
+  double largest_inflow_mach() const;
   void back_off_non_finite(SolveLoop& s);
   void release_held_limiter_if_far(const SolveLoop& s);
   bool track_residual(SolveLoop& s);  // true: went back to the best state
