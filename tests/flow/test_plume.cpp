@@ -73,29 +73,46 @@ PlumeMesh plume_mesh(int n_duct, int n_plume, int n_in, double plate_top, double
   return pm;
 }
 
+// The jet's conditions: NPR 5.4 at 750 K into air at rest; boundary conditions in the order of
+// plume_mesh's curves, and first-order settings scaled to the ambient state.
+struct PlumeConditions {
+  PerfectGas gas;
+  double p_amb = 101325.0, t_amb = 288.15, p0 = 5.4 * p_amb, t0 = 750.0;
+  State w_amb{p_amb / (gas.R * t_amb), 0.0, 0.0, p_amb};
+  BoundaryCondition sym, out, far, in, wall;
+  PlumeConditions() {
+    sym.kind = BcKind::symmetry;
+    out.kind = BcKind::pressure_outflow;
+    out.static_pressure = p_amb;
+    far.kind = BcKind::farfield;
+    far.freestream = w_amb;
+    in.kind = BcKind::stagnation_inflow;
+    in.total_pressure = p0;
+    in.total_temperature = t0;
+    wall.kind = BcKind::slip_wall;
+  }
+  std::vector<BoundaryCondition> bcs() const { return {sym, out, far, far, in, wall}; }
+  SolverSettings first_order() const {
+    SolverSettings s;
+    s.order = 1;
+    s.max_iterations = 400;
+    const double c_amb = std::sqrt(gas.gamma * p_amb / w_amb[0]);
+    s.reference_state = {w_amb[0], c_amb, c_amb, p_amb};
+    return s;
+  }
+};
+
 // Second stage (second_order): restarted from the first-order solution, second order with the
 // downstream face a far field too.
 void expect_plume_converges(const PlumeMesh& pm, bool second_order = false) {
   check_mesh(pm.mesh);
-  const PerfectGas gas;
-  const double p_amb = 101325.0, t_amb = 288.15, p0 = 5.4 * p_amb, t0 = 750.0;
-  const State w_amb{p_amb / (gas.R * t_amb), 0.0, 0.0, p_amb};
-  BoundaryCondition sym, out, far, in, wall;
-  sym.kind = BcKind::symmetry;
-  out.kind = BcKind::pressure_outflow;
-  out.static_pressure = p_amb;
-  far.kind = BcKind::farfield;
-  far.freestream = w_amb;
-  in.kind = BcKind::stagnation_inflow;
-  in.total_pressure = p0;
-  in.total_temperature = t0;
-  wall.kind = BcKind::slip_wall;
-  SolverSettings s;
-  s.order = 1;
-  s.max_iterations = 400;
-  s.reference_state = {w_amb[0], std::sqrt(gas.gamma * p_amb / w_amb[0]), std::sqrt(gas.gamma * p_amb / w_amb[0]),
-                       p_amb};
-  FlowSolver solver(pm.mesh, Geometry::planar, gas, {sym, out, far, far, in, wall}, s);
+  const PlumeConditions c;
+  const PerfectGas& gas = c.gas;
+  const double p0 = c.p0, t0 = c.t0;
+  const State& w_amb = c.w_amb;
+  const BoundaryCondition &sym = c.sym, &far = c.far, &in = c.in, &wall = c.wall;
+  const SolverSettings s = c.first_order();
+  FlowSolver solver(pm.mesh, Geometry::planar, gas, c.bcs(), s);
   solver.set_uniform(w_amb);
   const SolveReport r = solver.solve();
   EXPECT_TRUE(r.converged) << "residual drop " << r.residual_drop << " after " << r.iterations << " iterations";
@@ -148,30 +165,14 @@ TEST(FlowPlume, FinerSonicJetIntoAirAtRestConvergesAtFirstOrder) {
 // and the run converges to the same choked mass flow.
 TEST(FlowPlume, InflowRampHoldsWhileTheInflowRunsFast) {
   const PlumeMesh pm = plume_mesh(12, 30, 10, 0.52, 1.08, 0.05);
-  const PerfectGas gas;
-  const double p_amb = 101325.0, t_amb = 288.15, p0 = 5.4 * p_amb, t0 = 750.0;
-  const State w_amb{p_amb / (gas.R * t_amb), 0.0, 0.0, p_amb};
-  BoundaryCondition sym, out, far, in, wall;
-  sym.kind = BcKind::symmetry;
-  out.kind = BcKind::pressure_outflow;
-  out.static_pressure = p_amb;
-  far.kind = BcKind::farfield;
-  far.freestream = w_amb;
-  in.kind = BcKind::stagnation_inflow;
-  in.total_pressure = p0;
-  in.total_temperature = t0;
-  wall.kind = BcKind::slip_wall;
-  const double c_amb = std::sqrt(gas.gamma * p_amb / w_amb[0]);
+  const PlumeConditions c;
   auto run = [&](double hold_mach) {
-    SolverSettings s;
-    s.order = 1;
-    s.max_iterations = 400;
-    s.reference_state = {w_amb[0], c_amb, c_amb, p_amb};
+    SolverSettings s = c.first_order();
     s.inflow_ramp_iterations = 8;
-    s.inflow_ramp_start_pressure = p_amb;
+    s.inflow_ramp_start_pressure = c.p_amb;
     s.inflow_ramp_hold_mach = hold_mach;
-    FlowSolver solver(pm.mesh, Geometry::planar, gas, {sym, out, far, far, in, wall}, s);
-    solver.set_uniform(w_amb);
+    FlowSolver solver(pm.mesh, Geometry::planar, c.gas, c.bcs(), s);
+    solver.set_uniform(c.w_amb);
     const SolveReport r = solver.solve();
     EXPECT_TRUE(r.converged) << "hold " << hold_mach << ": residual drop " << r.residual_drop;
     return std::pair{r, -solver.boundary_integral(4).mass_flow};
