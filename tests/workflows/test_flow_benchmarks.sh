@@ -9,6 +9,8 @@ list=$("$src/workflows/flow-benchmarks" --list)
 grep -q '^nasa-2dcd-8.91 ' <<<"$list"
 rc=0; "$src/workflows/flow-benchmarks" --only no-such-benchmark --bin "$bin" 2>/dev/null || rc=$?
 [ "$rc" -eq 2 ] || { echo "unknown benchmark: exit $rc, expected 2"; exit 1; }
+rc=0; "$src/workflows/flow-benchmarks" --pairs 0 --bin "$bin" 2>/dev/null || rc=$?
+[ "$rc" -eq 2 ] || { echo "--pairs 0: exit $rc, expected 2"; exit 1; }
 "$src/workflows/flow-benchmarks" --run-root "$scratch" --bin "$bin" --only nparc-0.75-240x60 \
   --json "$scratch/figures.json" | tee "$scratch/table.txt"
 grep -q '^| nparc-0.75-240x60 | 14,701 | 1 | ' "$scratch/table.txt"
