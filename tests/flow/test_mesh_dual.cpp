@@ -49,6 +49,26 @@ TEST(MeshDual, ClosureAndVolumesOnDistortedMixedMesh) {
   EXPECT_EQ(dual.boundary_faces.size(), 2 * (2 * 16 + 2 * 10u));
 }
 
+TEST(MeshDual, EdgesRunInNodeOrderAndKeepTheirNormals) {
+  // cells listed triangles first, then quads: the edges must still come in node order
+  const Mesh mesh = test_meshes::distorted_mixed_mesh();
+  const DualMesh dual = build_dual(mesh, Geometry::planar);
+  ASSERT_GT(dual.num_edges(), 100);
+  for (int e = 0; e < dual.num_edges(); ++e) {
+    const auto [i, j] = dual.edges[e];
+    EXPECT_LT(i, j);
+    if (e > 0) {
+      EXPECT_LT(dual.edges[e - 1], dual.edges[e]) << "edge " << e;
+    }
+    // each normal travelled with its edge: it points from the first node to the second
+    const Vec2 along = dual.coords[j] - dual.coords[i];
+    EXPECT_GT(dual.edge_normal[e].x * along.x + dual.edge_normal[e].y * along.y, 0.0)
+        << "edge " << e;
+    EXPECT_GT(dual.edge_normal_planar[e].x * along.x + dual.edge_normal_planar[e].y * along.y, 0.0)
+        << "edge " << e;
+  }
+}
+
 TEST(MeshDual, AxisymmetricClosureIsPlanarAreaTimesRadialUnitVector) {
   const Mesh mesh = test_meshes::distorted_mixed_mesh();
   const DualMesh dual = build_dual(mesh, Geometry::axisymmetric);

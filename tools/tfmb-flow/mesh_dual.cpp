@@ -1,7 +1,10 @@
 #include "mesh_dual.hpp"
 
+#include <algorithm>
 #include <cstdint>
+#include <numeric>
 #include <stdexcept>
+#include <type_traits>
 #include <unordered_map>
 
 namespace tfmb::flow {
@@ -31,6 +34,24 @@ void polygon_area_moment(const Vec2* v, int nv, double& area, double& moment_y) 
     area += 0.5 * cross;
     moment_y += cross * (a.y + b.y) / 6.0;
   }
+}
+
+// Edges in the order of their nodes (first, then second): an edge loop then walks the node
+// arrays forward instead of in the cells' order, and a static split of it between threads gives
+// each thread the edges of a range of nodes.
+void sort_edges_by_nodes(DualMesh& d) {
+  std::vector<int> order(d.edges.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return d.edges[a] < d.edges[b]; });
+  auto permuted = [&](const auto& v) {
+    std::remove_cvref_t<decltype(v)> out(v.size());
+    for (std::size_t k = 0; k < order.size(); ++k)
+      out[k] = v[order[k]];
+    return out;
+  };
+  d.edges = permuted(d.edges);
+  d.edge_normal = permuted(d.edge_normal);
+  d.edge_normal_planar = permuted(d.edge_normal_planar);
 }
 
 }  // namespace
@@ -111,6 +132,8 @@ DualMesh build_dual(const Mesh& mesh, Geometry geometry) {
       d.boundary_faces.push_back({c, b, k, wc * nc, 0.5 * (m + pc)});
     }
   }
+
+  sort_edges_by_nodes(d);
 
   // Node -> edge incidence (CSR), neighbours in edge order; used for deterministic gathers.
   auto& ne = d.node_edges;
