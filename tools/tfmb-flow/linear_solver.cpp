@@ -125,8 +125,11 @@ void multiply_fixed(const BlockSparseMatrix& m, const std::vector<double>& x,
 template <int B>
 void multiply_rows_fixed(const BlockSparseMatrix& m, const std::vector<double>& x,
                          std::vector<double>& y, const std::vector<int>& rows) {
-  for (int i : rows)
-    multiply_row<B>(m, x, y, i);
+  // threaded: on nasa-2dcd's case mesh (51k nodes) the serial loop was 1 % of a two-thread run
+  const int count = static_cast<int>(rows.size());
+#pragma omp parallel for schedule(static) if (count > 1000)
+  for (int k = 0; k < count; ++k)
+    multiply_row<B>(m, x, y, rows[k]);
 }
 
 template <int B>
