@@ -506,6 +506,9 @@ class FlowSolver {
 
   bool turbulence_coupled_ = false;  // this iteration solves the coupled 5x5 system
   std::vector<State> u_, w_, res_, phi_, edge_flux_;
+  // per boundary face: its flux and its spectral radius term (evaluate_residual)
+  std::vector<State> face_flux_;
+  std::vector<double> face_spectral_radius_;
   std::vector<std::array<double, 8>> grad_;
   std::vector<double> nu_tilde_, eddy_viscosity_, wall_distance_;
   // SST: k, omega, and per no-slip node 60 / (beta1 d1^2) (omega_wall = that times nu)
