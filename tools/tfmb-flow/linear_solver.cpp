@@ -466,22 +466,66 @@ void for_each_entry(std::size_t n, Element element) {
   }
 }
 
-// One step of modified Gram-Schmidt fused with the next one's projection: w -= h v, then
-// returns w . u (u = w for the norm). One pass over memory instead of two, the same operations
-// in the same order per entry and per chunk as the separate loops.
-double subtract_then_dot(std::vector<double>& w, double h, const std::vector<double>& v,
-                         const std::vector<double>& u) {
+// Modified Gram-Schmidt of w against v[0..j], its norm and the next basis vector
+// v[j + 1] = w / |w|, in one parallel region: column[i] = w . v_i (w already reduced by
+// v_0..v_{i-1}), column[j + 1] = |w|; returns |w|. Each projection's subtraction is fused with
+// the next projection and the last with the norm (one pass over memory each). The chunks and
+// the order of their sums are those of chunked_sum(), so the bits are the same whatever the
+// thread count.
+// One region with a barrier per projection instead of a fork and a join per projection: with
+// OMP_WAIT_POLICY=passive each of them puts the idle thread to sleep and wakes it again.
+double orthogonalize(std::vector<double>& w, std::vector<std::vector<double>>& v, int j,
+                     double* column) {
+  const std::size_t n = w.size();
   double* wp = w.data();
-  const double* vp = v.data();
-  const double* up = u.data();
-  return chunked_sum(w.size(), [=](std::size_t first, std::size_t last) {
-    double s = 0.0;
-    for (std::size_t k = first; k < last; ++k) {
-      wp[k] -= h * vp[k];
-      s += wp[k] * up[k];
+  double* next = v[j + 1].data();
+  // double-buffered chunk sums: a thread may start projection i + 1 while another still adds
+  // up projection i's sums; it cannot reach i + 2 before that one has passed i + 1's barrier
+  double partial[2][kChunks];
+  double norm = 0.0;
+#pragma omp parallel if (n > kThreadedLength)
+  {
+    double previous = 0.0;  // the last projection, the same in every thread
+    for (int i = 0; i <= j + 1; ++i) {
+      const double* subtract = i > 0 ? v[i - 1].data() : nullptr;
+      const double* onto = i <= j ? v[i].data() : wp;
+      double* sums = partial[i % 2];
+      const double h = previous;
+#pragma omp for schedule(static)
+      for (int c = 0; c < kChunks; ++c) {
+        const std::size_t last = n * (c + 1) / kChunks;
+        double s = 0.0;
+        if (subtract) {
+          for (std::size_t k = n * c / kChunks; k < last; ++k) {
+            wp[k] -= h * subtract[k];
+            s += wp[k] * onto[k];
+          }
+        } else {
+          for (std::size_t k = n * c / kChunks; k < last; ++k)
+            s += wp[k] * onto[k];
+        }
+        sums[c] = s;
+      }
+      double s = 0.0;
+      for (int c = 0; c < kChunks; ++c)
+        s += sums[c];
+      previous = s;
+#pragma omp master
+      column[i] = i <= j ? s : std::sqrt(s);
     }
-    return s;
-  });
+    const double w_norm = std::sqrt(previous);
+#pragma omp master
+    norm = w_norm;
+    if (w_norm > 0.0) {
+#pragma omp for schedule(static) nowait
+      for (int c = 0; c < kChunks; ++c) {
+        const std::size_t last = n * (c + 1) / kChunks;
+        for (std::size_t k = n * c / kChunks; k < last; ++k)
+          next[k] = wp[k] / w_norm;
+      }
+    }
+  }
+  return norm;
 }
 
 }  // namespace
@@ -553,15 +597,13 @@ GmresResult gmres(const LinearOperator& a, const BlockIlu0& m, const std::vector
       ++result.iterations;
       m.apply(v[j], z);
       a(z, w);
-      // modified Gram-Schmidt: H(i, j) = w . v_i, w -= H(i, j) v_i for i = 0..j; each
-      // subtraction is fused with the next projection, the last with the norm of w
-      H(0, j) = dot_product(w, v[0]);
-      for (int i = 0; i < j; ++i)
-        H(i + 1, j) = subtract_then_dot(w, H(i, j), v[i], v[i + 1]);
-      const double wn = std::sqrt(subtract_then_dot(w, H(j, j), v[j], w));
-      H(j + 1, j) = wn;
-      if (wn > 0.0)
-        for_each_entry(n, [&](std::size_t k) { v[j + 1][k] = w[k] / wn; });
+      // modified Gram-Schmidt: H(i, j) = w . v_i, w -= H(i, j) v_i for i = 0..j, then
+      // H(j + 1, j) = |w| and v_{j+1} = w / |w|
+      std::vector<double>& column = ws.column;
+      column.resize(j + 2);
+      const double wn = orthogonalize(w, v, j, column.data());
+      for (int i = 0; i <= j + 1; ++i)
+        H(i, j) = column[i];
       for (int i = 0; i < j; ++i) {  // apply earlier Givens rotations
         const double t = cs[i] * H(i, j) + sn[i] * H(i + 1, j);
         H(i + 1, j) = -sn[i] * H(i, j) + cs[i] * H(i + 1, j);

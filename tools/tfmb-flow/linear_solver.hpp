@@ -74,6 +74,7 @@ struct GmresResult {
 struct GmresWorkspace {
   std::vector<std::vector<double>> v, z;
   std::vector<double> h, cs, sn, g, w, r, y;
+  std::vector<double> column;  // one column of the Hessenberg matrix, as orthogonalised
 };
 
 // Solves A x = b to ||b - A x|| <= rel_tol ||b|| or max_iterations, starting from x = 0.
