@@ -309,13 +309,15 @@ void FlowSolver::turbulence_residual(bool jacobian, const std::vector<double>* d
   sa_nu_.resize(n);
   sa_diffusivity_.resize(n);
   const bool cross = jacobian && turbulence_coupled_;
+  // sized here and zeroed in the threaded loops below (a serial assign was 0.2 % of a two-thread
+  // run on nasa-2dcd's case mesh): the diagonals where they are set, the off-diagonals per row
   if (jacobian) {
-    sa_diag_.assign(n, 0.0);
-    sa_offdiag_.assign(inc.edge.size(), 0.0);
+    sa_diag_.resize(n);
+    sa_offdiag_.resize(inc.edge.size());
   }
   if (cross) {
-    sa_cross_diag_.assign(4 * static_cast<std::size_t>(n), 0.0);
-    sa_cross_offdiag_.assign(4 * inc.edge.size(), 0.0);
+    sa_cross_diag_.resize(4 * static_cast<std::size_t>(n));
+    sa_cross_offdiag_.resize(4 * inc.edge.size());
   }
   std::vector<double>& nu = sa_nu_;
   std::vector<double>& diffusivity = sa_diffusivity_;
@@ -331,6 +333,11 @@ void FlowSolver::turbulence_residual(bool jacobian, const std::vector<double>* d
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     double r = 0.0, d = diag_scale ? (*diag_scale)[i] : 0.0;
+    if (cross) {
+      std::fill_n(sa_cross_diag_.data() + 4 * static_cast<std::size_t>(i), 4, 0.0);
+      std::fill(sa_cross_offdiag_.data() + 4 * static_cast<std::size_t>(inc.offsets[i]),
+                sa_cross_offdiag_.data() + 4 * static_cast<std::size_t>(inc.offsets[i + 1]), 0.0);
+    }
     for (int k = inc.offsets[i]; k < inc.offsets[i + 1]; ++k) {
       const int e = inc.edge[k];
       const int j = inc.neighbour[k];
@@ -838,11 +845,24 @@ LinearOperator FlowSolver::matrix_free_operator(const std::vector<double>& diag_
   const int n = dual_.num_nodes;
   const bool coupled = turbulence_coupled_;
   const int nb = coupled ? 5 : 4;
-  auto base_u = std::make_shared<std::vector<State>>(u_);
-  auto base_res = std::make_shared<std::vector<State>>(res_);
-  auto base_nu = std::make_shared<std::vector<double>>(coupled ? nu_tilde_ : std::vector<double>{});
-  auto base_sa_res =
-      std::make_shared<std::vector<double>>(coupled ? sa_res_ : std::vector<double>{});
+  // The base state and residuals, copied into buffers kept from one Newton step to the next
+  // and threaded: fresh copies per step were 0.3 % of a two-thread run on nasa-2dcd's case mesh,
+  // page faults included, with the second thread idle.
+  MatrixFreeBase* base = &matrix_free_base_;
+  base->u.resize(n);
+  base->res.resize(n);
+  base->nu.resize(coupled ? n : 0);
+  base->sa_res.resize(coupled ? n : 0);
+  base->nu_scale.resize(coupled ? n : 0);
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    base->u[i] = u_[i];
+    base->res[i] = res_[i];
+    if (coupled) {
+      base->nu[i] = nu_tilde_[i];
+      base->sa_res[i] = sa_res_[i];
+    }
+  }
   double u_norm2 = 0.0;
   for (const auto& s : u_) {
     for (double c : s)
@@ -851,20 +871,18 @@ LinearOperator FlowSolver::matrix_free_operator(const std::vector<double>& diag_
   const double u_norm = std::sqrt(u_norm2);
   // nu_tilde's own scale per node (|nu_tilde| + nu, nu_tilde may be 0 or negative) and the
   // weight that makes the perturbation of nu_tilde as relative as that of the mean flow
-  auto nu_scale = std::make_shared<std::vector<double>>();
   double nu_weight = 0.0;
   if (coupled) {
-    nu_scale->resize(n);
     double nu_norm2 = 0.0;
     for (int i = 0; i < n; ++i) {
       const double s = std::abs(nu_tilde_[i]) + sa_nu_[i];
-      (*nu_scale)[i] = s;
+      base->nu_scale[i] = s;
       nu_norm2 += s * s;
     }
     nu_weight = u_norm / std::max(std::sqrt(nu_norm2), 1e-300);
   }
-  return [this, n, nb, coupled, base_u, base_res, base_nu, base_sa_res, nu_scale, nu_weight, u_norm,
-          &diag_scale](const std::vector<double>& x, std::vector<double>& y) {
+  return [this, n, nb, coupled, base, nu_weight, u_norm, &diag_scale](const std::vector<double>& x,
+                                                                      std::vector<double>& y) {
     // the assembled rows are needed only where they replace the residual difference
     y.resize(x.size());
     system_matrix().multiply_rows(x, y, assembled_rows_);
@@ -888,7 +906,7 @@ LinearOperator FlowSolver::matrix_free_operator(const std::vector<double>& diag_
       double limit = std::numeric_limits<double>::infinity();
       const int last = static_cast<int>(static_cast<long>(n) * (c + 1) / kChunks);
       for (int i = static_cast<int>(static_cast<long>(n) * c / kChunks); i < last; ++i) {
-        const State& u = (*base_u)[i];
+        const State& u = base->u[i];
         const double* xi = x.data() + nb * static_cast<std::size_t>(i);
         norm2 += xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2] + xi[3] * xi[3];
         if (coupled)
@@ -903,7 +921,7 @@ LinearOperator FlowSolver::matrix_free_operator(const std::vector<double>& diag_
         if (dp != 0.0)
           limit = std::min(limit, 1e-6 * p / std::abs(dp));
         if (coupled && xi[4] != 0.0)
-          limit = std::min(limit, 1e-6 * (*nu_scale)[i] / std::abs(xi[4]));
+          limit = std::min(limit, 1e-6 * base->nu_scale[i] / std::abs(xi[4]));
       }
       chunk_norm2[c] = norm2;
       chunk_limit[c] = limit;
@@ -924,22 +942,22 @@ LinearOperator FlowSolver::matrix_free_operator(const std::vector<double>& diag_
 #pragma omp parallel for schedule(static)
     for (int i = 0; i < n; ++i) {
       for (int v = 0; v < 4; ++v)
-        u_[i][v] = (*base_u)[i][v] + eps * x[nb * i + v];
+        u_[i][v] = base->u[i][v] + eps * x[nb * i + v];
       if (coupled)
-        nu_tilde_[i] = (*base_nu)[i] + eps * x[nb * i + 4];
+        nu_tilde_[i] = base->nu[i] + eps * x[nb * i + 4];
     }
     compute_residual(false);
     // the base state is restored in this threaded loop (a serial copy was 1 % of a two-thread
     // run on nasa-2dcd's case mesh)
 #pragma omp parallel for schedule(static)
     for (int i = 0; i < n; ++i) {
-      u_[i] = (*base_u)[i];
+      u_[i] = base->u[i];
       if (coupled)
-        nu_tilde_[i] = (*base_nu)[i];
+        nu_tilde_[i] = base->nu[i];
       const bool wall = wall_node_bc_[i] >= 0;
       if (coupled && !wall) {
-        y[nb * i + 4] = sa_row_scale_ *
-                        (diag_scale[i] * x[nb * i + 4] + (sa_res_[i] - (*base_sa_res)[i]) / eps);
+        y[nb * i + 4] =
+            sa_row_scale_ * (diag_scale[i] * x[nb * i + 4] + (sa_res_[i] - base->sa_res[i]) / eps);
       }
       if (fixed_node_[i])
         continue;
@@ -947,7 +965,7 @@ LinearOperator FlowSolver::matrix_free_operator(const std::vector<double>& diag_
       for (int v = 0; v < 4; ++v) {
         if (wall && (v == 1 || v == 2 || (v == 3 && iso)))
           continue;
-        y[nb * i + v] = diag_scale[i] * x[nb * i + v] + (res_[i][v] - (*base_res)[i][v]) / eps;
+        y[nb * i + v] = diag_scale[i] * x[nb * i + v] + (res_[i][v] - base->res[i][v]) / eps;
       }
     }
   };
@@ -1438,6 +1456,9 @@ bool FlowSolver::check_convergence(SolveLoop& s) {
 // defect correction (newton_krylov_step()), into s.du.
 void FlowSolver::linear_step(SolveLoop& s) {
   const int n = s.n, nb = s.nb;
+  // the loops over nodes here are threaded: serial, they were 0.4 % of a two-thread run on
+  // nasa-2dcd's case mesh, with the second thread idle
+#pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i)
     s.diag_scale[i] = spectral_radius_[i] / s.cfl;  // V / dt
   assemble_jacobian(s.diag_scale);
@@ -1446,6 +1467,7 @@ void FlowSolver::linear_step(SolveLoop& s) {
     turbulence_residual(true, &s.diag_scale);
     assemble_coupled_jacobian();
   }
+#pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     double* rhs_i = s.rhs.data() + nb * static_cast<std::size_t>(i);
     for (int v = 0; v < 4; ++v)

@@ -509,6 +509,12 @@ class FlowSolver {
   // per boundary face: its flux and its spectral radius term (evaluate_residual)
   std::vector<State> face_flux_;
   std::vector<double> face_spectral_radius_;
+  // The state and residuals the matrix-free operator differences against (its last call's)
+  struct MatrixFreeBase {
+    std::vector<State> u, res;
+    std::vector<double> nu, sa_res, nu_scale;
+  };
+  MatrixFreeBase matrix_free_base_;
   std::vector<std::array<double, 8>> grad_;
   std::vector<double> nu_tilde_, eddy_viscosity_, wall_distance_;
   // SST: k, omega, and per no-slip node 60 / (beta1 d1^2) (omega_wall = that times nu)
