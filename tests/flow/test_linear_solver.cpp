@@ -1,11 +1,16 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
 #include <stdexcept>
 
 #include "tfmb-flow/linear_solver.hpp"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 using namespace tfmb::flow;
 
@@ -134,6 +139,71 @@ TEST(LinearSolver, IluWithLevelOfFill) {
   exact.factorize(a, 2, 1);
   const GmresResult r = gmres(a, exact, b, x, 1e-10, 50, 200);
   EXPECT_LE(r.relative_residual, 1e-10);
+}
+
+// GMRES on a system whose vectors are above the threading threshold (8,000 entries): its vector
+// loops and its Gram-Schmidt (one parallel region per iteration) run on the threads over fixed
+// chunks whose sums are added in a fixed order, so one and two threads take the same iterations
+// to the same bits. Restarted, so that the restart's loops run too.
+TEST(LinearSolver, GmresGivesTheSameBitsOnOneAndTwoThreads) {
+  const int m = 50, n = m * m, nb = 4;  // 10,000 entries
+  std::vector<std::array<int, 2>> edges;
+  for (int j = 0; j < m; ++j) {
+    for (int i = 0; i < m; ++i) {
+      if (i + 1 < m)
+        edges.push_back({j * m + i, j * m + i + 1});
+      if (j + 1 < m)
+        edges.push_back({j * m + i, (j + 1) * m + i});
+    }
+  }
+  BlockSparseMatrix a = make_pattern(n, edges, nb);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int i = 0; i < n; ++i) {
+    for (int p = a.row_ptr[i]; p < a.row_ptr[i + 1]; ++p) {
+      double* b = a.block(p);
+      for (int k = 0; k < nb * nb; ++k)
+        b[k] = 0.3 * u(rng);
+      for (int k = 0; k < nb; ++k)
+        b[(nb + 1) * k] += a.col[p] == i ? 4.2 : -1.0;
+    }
+  }
+  std::vector<double> x_true(nb * n), b;
+  for (auto& v : x_true)
+    v = u(rng);
+  a.multiply(x_true, b);
+  auto solve = [&](int threads, std::vector<double>& x) {
+#ifdef _OPENMP
+    omp_set_num_threads(threads);
+#else
+    (void)threads;
+#endif
+    BlockIlu0 ilu;
+    ilu.factorize(a, 1, 1);
+    return gmres(a, ilu, b, x, 1e-10, 10, 400);
+  };
+#ifdef _OPENMP
+  const int threads_before = omp_get_max_threads();
+#endif
+  std::vector<double> x1, x2;
+  const GmresResult r1 = solve(1, x1);
+  const GmresResult r2 = solve(2, x2);
+#ifdef _OPENMP
+  omp_set_num_threads(threads_before);
+#endif
+  EXPECT_LE(r1.relative_residual, 1e-10);
+  EXPECT_GT(r1.iterations, 10);  // restarted at least once
+  EXPECT_EQ(r1.iterations, r2.iterations);
+  EXPECT_EQ(r1.relative_residual, r2.relative_residual);
+  ASSERT_EQ(x1.size(), x2.size());
+  int differing = 0;
+  double error = 0.0;
+  for (std::size_t k = 0; k < x1.size(); ++k) {
+    differing += x1[k] != x2[k];
+    error = std::max(error, std::abs(x1[k] - x_true[k]));
+  }
+  EXPECT_EQ(differing, 0);
+  EXPECT_LT(error, 1e-7);
 }
 
 TEST(LinearSolver, UnsupportedBlockSizeIsRefused) {
