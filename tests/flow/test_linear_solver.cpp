@@ -80,12 +80,18 @@ TEST_P(LinearSolverBlocks, GmresWithBlockIluSolvesAConvectionLikeSystem) {
 
 INSTANTIATE_TEST_SUITE_P(BlockSizes, LinearSolverBlocks, ::testing::Values(4, 5, 6));
 
-// Level-of-fill ILU(k) on a 2D grid graph (5-point, 30 x 30 nodes, 4x4 blocks): with k large
-// enough to keep every fill-in the factorisation is the exact LU, so one application solves the
-// system (single-precision factors: to 1e-5); each level takes more blocks than the one before
-// and the GMRES iterations do not grow with k.
-TEST(LinearSolver, IluWithLevelOfFill) {
-  const int m = 30, n = m * m, nb = 4;
+namespace {
+
+// A 2D grid graph (5-point, m x m nodes) with nb x nb blocks: random blocks of size noise plus a
+// convection-diffusion-like M-matrix part (-1 off the diagonal, `diagonal` on it), and the
+// right-hand side of a random solution.
+struct GridSystem {
+  BlockSparseMatrix a;
+  std::vector<double> x_true, b;
+};
+
+GridSystem grid_system(int m, int nb, unsigned seed, double noise, double diagonal) {
+  const int n = m * m;
   std::vector<std::array<int, 2>> edges;
   for (int j = 0; j < m; ++j) {
     for (int i = 0; i < m; ++i) {
@@ -95,23 +101,36 @@ TEST(LinearSolver, IluWithLevelOfFill) {
         edges.push_back({j * m + i, (j + 1) * m + i});
     }
   }
-  BlockSparseMatrix a = make_pattern(n, edges, nb);
-  std::mt19937 rng(11);
+  GridSystem g{make_pattern(n, edges, nb), std::vector<double>(nb * n), {}};
+  std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int i = 0; i < n; ++i) {
-    for (int p = a.row_ptr[i]; p < a.row_ptr[i + 1]; ++p) {
-      double* b = a.block(p);
+    for (int p = g.a.row_ptr[i]; p < g.a.row_ptr[i + 1]; ++p) {
+      double* block = g.a.block(p);
       for (int k = 0; k < nb * nb; ++k)
-        b[k] = 0.2 * u(rng);
-      // a convection-diffusion-like M-matrix part: -1 off the diagonal, 4.4 on it
+        block[k] = noise * u(rng);
       for (int k = 0; k < nb; ++k)
-        b[(nb + 1) * k] += a.col[p] == i ? 4.4 : -1.0;
+        block[(nb + 1) * k] += g.a.col[p] == i ? diagonal : -1.0;
     }
   }
-  std::vector<double> x_true(nb * n), b;
-  for (auto& v : x_true)
+  for (auto& v : g.x_true)
     v = u(rng);
-  a.multiply(x_true, b);
+  g.a.multiply(g.x_true, g.b);
+  return g;
+}
+
+}  // namespace
+
+// Level-of-fill ILU(k) on a 2D grid graph (5-point, 30 x 30 nodes, 4x4 blocks): with k large
+// enough to keep every fill-in the factorisation is the exact LU, so one application solves the
+// system (single-precision factors: to 1e-5); each level takes more blocks than the one before
+// and the GMRES iterations do not grow with k.
+TEST(LinearSolver, IluWithLevelOfFill) {
+  const int m = 30, n = m * m, nb = 4;
+  const GridSystem g = grid_system(m, nb, 11, 0.2, 4.4);
+  const BlockSparseMatrix& a = g.a;
+  const std::vector<double>& x_true = g.x_true;
+  const std::vector<double>& b = g.b;
   std::size_t previous_blocks = 0;
   int previous_iterations = 1000;
   for (int level : {0, 1, 2, 3}) {
@@ -146,32 +165,10 @@ TEST(LinearSolver, IluWithLevelOfFill) {
 // chunks whose sums are added in a fixed order, so one and two threads take the same iterations
 // to the same bits. Restarted, so that the restart's loops run too.
 TEST(LinearSolver, GmresGivesTheSameBitsOnOneAndTwoThreads) {
-  const int m = 50, n = m * m, nb = 4;  // 10,000 entries
-  std::vector<std::array<int, 2>> edges;
-  for (int j = 0; j < m; ++j) {
-    for (int i = 0; i < m; ++i) {
-      if (i + 1 < m)
-        edges.push_back({j * m + i, j * m + i + 1});
-      if (j + 1 < m)
-        edges.push_back({j * m + i, (j + 1) * m + i});
-    }
-  }
-  BlockSparseMatrix a = make_pattern(n, edges, nb);
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  for (int i = 0; i < n; ++i) {
-    for (int p = a.row_ptr[i]; p < a.row_ptr[i + 1]; ++p) {
-      double* b = a.block(p);
-      for (int k = 0; k < nb * nb; ++k)
-        b[k] = 0.3 * u(rng);
-      for (int k = 0; k < nb; ++k)
-        b[(nb + 1) * k] += a.col[p] == i ? 4.2 : -1.0;
-    }
-  }
-  std::vector<double> x_true(nb * n), b;
-  for (auto& v : x_true)
-    v = u(rng);
-  a.multiply(x_true, b);
+  const GridSystem g = grid_system(50, 4, 5, 0.3, 4.2);  // 10,000 unknowns
+  const BlockSparseMatrix& a = g.a;
+  const std::vector<double>& x_true = g.x_true;
+  const std::vector<double>& b = g.b;
   auto solve = [&](int threads, std::vector<double>& x) {
 #ifdef _OPENMP
     omp_set_num_threads(threads);
