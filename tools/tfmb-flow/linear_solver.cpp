@@ -233,7 +233,6 @@ void ilu_apply_fixed(const BlockSparseMatrix& lu, const std::vector<float>& fact
   }
 }
 
-constexpr int kChunks = 64;
 // Below 8000 entries threads cost more than they save.
 constexpr std::size_t kThreadedLength = 8000;
 
@@ -256,8 +255,8 @@ void BlockSparseMatrix::set_zero() {
   const std::size_t size = val.size();
   double* v = val.data();
 #pragma omp parallel for schedule(static) if (size > kThreadedLength)
-  for (int c = 0; c < kChunks; ++c)
-    std::fill(v + size * c / kChunks, v + size * (c + 1) / kChunks, 0.0);
+  for (int c = 0; c < kReductionChunks; ++c)
+    std::fill(v + size * c / kReductionChunks, v + size * (c + 1) / kReductionChunks, 0.0);
 }
 
 void BlockSparseMatrix::multiply(const std::vector<double>& x, std::vector<double>& y) const {
@@ -388,9 +387,9 @@ void BlockIlu0::factorize(const BlockSparseMatrix& a, int partitions, int fill_l
       const double* from = a.val.data();
       double* to = lu_.val.data();
 #pragma omp parallel for schedule(static) if (size > kThreadedLength)
-      for (int c = 0; c < kChunks; ++c)
-        std::copy(from + size * c / kChunks, from + size * (c + 1) / kChunks,
-                  to + size * c / kChunks);
+      for (int c = 0; c < kReductionChunks; ++c)
+        std::copy(from + size * c / kReductionChunks, from + size * (c + 1) / kReductionChunks,
+                  to + size * c / kReductionChunks);
     }
     pattern_col_.clear();
   } else {
@@ -425,8 +424,8 @@ void BlockIlu0::factorize(const BlockSparseMatrix& a, int partitions, int fill_l
   const double* from = lu_.val.data();
   float* to = factors_.data();
 #pragma omp parallel for schedule(static) if (size > kThreadedLength)
-  for (int c = 0; c < kChunks; ++c) {
-    for (std::size_t k = size * c / kChunks; k < size * (c + 1) / kChunks; ++k)
+  for (int c = 0; c < kReductionChunks; ++c) {
+    for (std::size_t k = size * c / kReductionChunks; k < size * (c + 1) / kReductionChunks; ++k)
       to[k] = static_cast<float>(from[k]);
   }
 }
@@ -440,16 +439,16 @@ void BlockIlu0::apply(const std::vector<double>& b, std::vector<double>& x) cons
 
 namespace {
 
-// The vector loops of GMRES, threaded over the same kChunks fixed chunks as every reduction, so
-// that a sum is added in one order whatever the thread count (deterministic results) and the
-// element-wise updates give the same bits as serial loops.
+// The vector loops of GMRES, threaded over the same kReductionChunks fixed chunks as every
+// reduction, so that a sum is added in one order whatever the thread count (deterministic results)
+// and the element-wise updates give the same bits as serial loops.
 
 template <class ChunkSum>
 double chunked_sum(std::size_t n, ChunkSum chunk_sum) {
-  double partial[kChunks];
+  double partial[kReductionChunks];
 #pragma omp parallel for schedule(static) if (n > kThreadedLength)
-  for (int c = 0; c < kChunks; ++c)
-    partial[c] = chunk_sum(n * c / kChunks, n * (c + 1) / kChunks);
+  for (int c = 0; c < kReductionChunks; ++c)
+    partial[c] = chunk_sum(chunk_begin(n, c), chunk_begin(n, c + 1));
   double s = 0.0;
   for (double p : partial)
     s += p;
@@ -459,9 +458,9 @@ double chunked_sum(std::size_t n, ChunkSum chunk_sum) {
 template <class Element>
 void for_each_entry(std::size_t n, Element element) {
 #pragma omp parallel for schedule(static) if (n > kThreadedLength)
-  for (int c = 0; c < kChunks; ++c) {
-    const std::size_t last = n * (c + 1) / kChunks;
-    for (std::size_t k = n * c / kChunks; k < last; ++k)
+  for (int c = 0; c < kReductionChunks; ++c) {
+    const std::size_t last = chunk_begin(n, c + 1);
+    for (std::size_t k = chunk_begin(n, c); k < last; ++k)
       element(k);
   }
 }
@@ -481,7 +480,7 @@ double orthogonalize(std::vector<double>& w, std::vector<std::vector<double>>& v
   double* next = v[j + 1].data();
   // double-buffered chunk sums: a thread may start projection i + 1 while another still adds
   // up projection i's sums; it cannot reach i + 2 before that one has passed i + 1's barrier
-  double partial[2][kChunks];
+  double partial[2][kReductionChunks];
   double norm = 0.0;
 #pragma omp parallel if (n > kThreadedLength)
   {
@@ -492,22 +491,22 @@ double orthogonalize(std::vector<double>& w, std::vector<std::vector<double>>& v
       double* sums = partial[i % 2];
       const double h = previous;
 #pragma omp for schedule(static)
-      for (int c = 0; c < kChunks; ++c) {
-        const std::size_t last = n * (c + 1) / kChunks;
+      for (int c = 0; c < kReductionChunks; ++c) {
+        const std::size_t last = chunk_begin(n, c + 1);
         double s = 0.0;
         if (subtract) {
-          for (std::size_t k = n * c / kChunks; k < last; ++k) {
+          for (std::size_t k = chunk_begin(n, c); k < last; ++k) {
             wp[k] -= h * subtract[k];
             s += wp[k] * onto[k];
           }
         } else {
-          for (std::size_t k = n * c / kChunks; k < last; ++k)
+          for (std::size_t k = chunk_begin(n, c); k < last; ++k)
             s += wp[k] * onto[k];
         }
         sums[c] = s;
       }
       double s = 0.0;
-      for (int c = 0; c < kChunks; ++c)
+      for (int c = 0; c < kReductionChunks; ++c)
         s += sums[c];
       previous = s;
 #pragma omp master
@@ -518,9 +517,9 @@ double orthogonalize(std::vector<double>& w, std::vector<std::vector<double>>& v
     norm = w_norm;
     if (w_norm > 0.0) {
 #pragma omp for schedule(static) nowait
-      for (int c = 0; c < kChunks; ++c) {
-        const std::size_t last = n * (c + 1) / kChunks;
-        for (std::size_t k = n * c / kChunks; k < last; ++k)
+      for (int c = 0; c < kReductionChunks; ++c) {
+        const std::size_t last = chunk_begin(n, c + 1);
+        for (std::size_t k = chunk_begin(n, c); k < last; ++k)
           next[k] = wp[k] / w_norm;
       }
     }
@@ -541,13 +540,13 @@ double dot_product(const std::vector<double>& a, const std::vector<double>& b) {
   });
 }
 
-GmresResult gmres(const BlockSparseMatrix& a, const BlockIlu0& m, const std::vector<double>& b,
+GmresResult gmres(const BlockSparseMatrix& a, const Preconditioner& m, const std::vector<double>& b,
                   std::vector<double>& x, double rel_tol, int restart, int max_iterations) {
   GmresWorkspace workspace;
   return gmres(a, m, b, x, rel_tol, restart, max_iterations, workspace);
 }
 
-GmresResult gmres(const BlockSparseMatrix& a, const BlockIlu0& m, const std::vector<double>& b,
+GmresResult gmres(const BlockSparseMatrix& a, const Preconditioner& m, const std::vector<double>& b,
                   std::vector<double>& x, double rel_tol, int restart, int max_iterations,
                   GmresWorkspace& ws) {
   const LinearOperator multiply = [&a](const std::vector<double>& in, std::vector<double>& out) {
@@ -556,7 +555,7 @@ GmresResult gmres(const BlockSparseMatrix& a, const BlockIlu0& m, const std::vec
   return gmres(multiply, m, b, x, rel_tol, restart, max_iterations, ws);
 }
 
-GmresResult gmres(const LinearOperator& a, const BlockIlu0& m, const std::vector<double>& b,
+GmresResult gmres(const LinearOperator& a, const Preconditioner& m, const std::vector<double>& b,
                   std::vector<double>& x, double rel_tol, int restart, int max_iterations,
                   GmresWorkspace& ws) {
   const std::size_t n = b.size();
@@ -571,15 +570,18 @@ GmresResult gmres(const LinearOperator& a, const BlockIlu0& m, const std::vector
     ws.v.resize(restart + 1);
   for (auto& vec : ws.v)
     vec.resize(n);
-  ws.z.resize(1);
-  ws.z[0].resize(n);
+  const bool flexible = m.flexible();
+  const std::size_t preconditioned = flexible ? restart : 1;
+  if (ws.z.size() < preconditioned)
+    ws.z.resize(preconditioned);
+  for (std::size_t i = 0; i < preconditioned; ++i)
+    ws.z[i].resize(n);
   ws.h.assign((restart + 1) * restart, 0.0);
   ws.cs.assign(restart, 0.0);
   ws.sn.assign(restart, 0.0);
   ws.g.assign(restart + 1, 0.0);
   ws.w.resize(n);
   auto& v = ws.v;
-  auto& z = ws.z[0];
   auto& cs = ws.cs;
   auto& sn = ws.sn;
   auto& g = ws.g;
@@ -595,6 +597,7 @@ GmresResult gmres(const LinearOperator& a, const BlockIlu0& m, const std::vector
     int j = 0;
     for (; j < restart && result.iterations < max_iterations; ++j) {
       ++result.iterations;
+      std::vector<double>& z = ws.z[flexible ? j : 0];
       m.apply(v[j], z);
       a(z, w);
       // modified Gram-Schmidt: H(i, j) = w . v_i, w -= H(i, j) v_i for i = 0..j, then
@@ -623,7 +626,8 @@ GmresResult gmres(const LinearOperator& a, const BlockIlu0& m, const std::vector
       }
     }
     // x += M^-1 (V y) with H y = g (upper triangular): one preconditioner application instead
-    // of storing the preconditioned basis (right preconditioning, fixed M).
+    // of storing the preconditioned basis (right preconditioning, fixed M); a flexible M's
+    // basis is stored, x += Z y.
     std::vector<double>& y = ws.y;
     y.assign(j, 0.0);
     for (int i = j - 1; i >= 0; --i) {
@@ -632,14 +636,23 @@ GmresResult gmres(const LinearOperator& a, const BlockIlu0& m, const std::vector
         s -= H(i, k) * y[k];
       y[i] = s / H(i, i);
     }
-    for_each_entry(n, [&](std::size_t k) {
-      double s = 0.0;
-      for (int i = 0; i < j; ++i)
-        s += y[i] * v[i][k];
-      w[k] = s;
-    });
-    m.apply(w, z);
-    for_each_entry(n, [&](std::size_t k) { x[k] += z[k]; });
+    if (flexible) {
+      for_each_entry(n, [&](std::size_t k) {
+        double s = 0.0;
+        for (int i = 0; i < j; ++i)
+          s += y[i] * ws.z[i][k];
+        x[k] += s;
+      });
+    } else {
+      for_each_entry(n, [&](std::size_t k) {
+        double s = 0.0;
+        for (int i = 0; i < j; ++i)
+          s += y[i] * v[i][k];
+        w[k] = s;
+      });
+      m.apply(w, ws.z[0]);
+      for_each_entry(n, [&](std::size_t k) { x[k] += ws.z[0][k]; });
+    }
     if (result.relative_residual <= rel_tol || result.iterations >= max_iterations)
       break;
     a(x, w);

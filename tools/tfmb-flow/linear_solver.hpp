@@ -33,14 +33,32 @@ struct BlockSparseMatrix {
                      const std::vector<int>& rows) const;
 };
 
+// Every deterministic reduction (GMRES's dot products and norms, the matrix-free product's norm)
+// cuts its range [0, n) into these fixed chunks, [chunk_begin(n, c), chunk_begin(n, c + 1)), and
+// adds the chunks' results in chunk order: the same bits whatever the number of threads.
+inline constexpr int kReductionChunks = 64;
+inline std::size_t chunk_begin(std::size_t n, int chunk) {
+  return n * chunk / kReductionChunks;
+}
+
 // Pattern of a node graph given by its edges: diagonal plus both off-diagonals per edge.
 BlockSparseMatrix make_pattern(int num_nodes, const std::vector<std::array<int, 2>>& edges,
                                int block_size = 4);
 
+// x = M^-1 b of a preconditioner. A fixed linear M (flexible() false) lets GMRES keep only the
+// Krylov basis; one that depends on b (flexible() true) makes it keep the preconditioned basis
+// too (flexible GMRES, Saad 1993, SIAM J. Sci. Comput. 14:461).
+class Preconditioner {
+ public:
+  virtual ~Preconditioner() = default;
+  virtual void apply(const std::vector<double>& b, std::vector<double>& x) const = 0;
+  virtual bool flexible() const { return false; }
+};
+
 // Block ILU(k) (Saad 2003, Iterative Methods for Sparse Linear Systems, 2nd ed., sec. 10.3.3:
 // level of fill). k = 0 keeps the pattern of the matrix; k >= 1 also keeps the fill-in entries
 // whose level, lev(i,j) = min over k of lev(i,k) + lev(k,j) + 1, is at most k.
-class BlockIlu0 {
+class BlockIlu0 final : public Preconditioner {
  public:
   // Factorises a copy of the matrix in the pattern of level `fill_level` (in double precision);
   // diagonal blocks are stored inverted. The factors used by apply() are kept in single
@@ -50,7 +68,7 @@ class BlockIlu0 {
   // factorised and solved in parallel, and the result does not depend on the thread count.
   // The fill pattern is computed once per matrix pattern and kept.
   void factorize(const BlockSparseMatrix& a, int partitions = 1, int fill_level = 0);
-  void apply(const std::vector<double>& b, std::vector<double>& x) const;  // x = (LU)^-1 b
+  void apply(const std::vector<double>& b, std::vector<double>& x) const override;  // (LU)^-1 b
   std::size_t factor_blocks() const { return lu_.col.size(); }  // blocks stored in L and U
 
  private:
@@ -78,18 +96,18 @@ struct GmresWorkspace {
 };
 
 // Solves A x = b to ||b - A x|| <= rel_tol ||b|| or max_iterations, starting from x = 0.
-GmresResult gmres(const BlockSparseMatrix& a, const BlockIlu0& precond,
+GmresResult gmres(const BlockSparseMatrix& a, const Preconditioner& precond,
                   const std::vector<double>& b, std::vector<double>& x, double rel_tol, int restart,
                   int max_iterations, GmresWorkspace& workspace);
-GmresResult gmres(const BlockSparseMatrix& a, const BlockIlu0& precond,
+GmresResult gmres(const BlockSparseMatrix& a, const Preconditioner& precond,
                   const std::vector<double>& b, std::vector<double>& x, double rel_tol, int restart,
                   int max_iterations);
 
 // The same with the operator given as y = A x (e.g. matrix-free, by differences of residuals).
 using LinearOperator = std::function<void(const std::vector<double>& x, std::vector<double>& y)>;
-GmresResult gmres(const LinearOperator& a, const BlockIlu0& precond, const std::vector<double>& b,
-                  std::vector<double>& x, double rel_tol, int restart, int max_iterations,
-                  GmresWorkspace& workspace);
+GmresResult gmres(const LinearOperator& a, const Preconditioner& precond,
+                  const std::vector<double>& b, std::vector<double>& x, double rel_tol, int restart,
+                  int max_iterations, GmresWorkspace& workspace);
 
 // Deterministic dot product (fixed chunk partition, ordered sum of chunk sums).
 double dot_product(const std::vector<double>& a, const std::vector<double>& b);

@@ -187,6 +187,11 @@ int main(int argc, char** argv) {
             "level of fill of the block ILU preconditioner (0: ILU(0), the pattern of the "
             "first-order Jacobian; k: also the fill-in of level <= k)",
             tfmb::cli::range(0, 8));
+  table.add("--multigrid-levels", o.settings.multigrid_levels, "1",
+            "levels of the aggregation multigrid preconditioner, the fine one included (double "
+            "pairwise aggregation, block ILU smoothing, one V(1,1)-cycle per GMRES iteration); "
+            "1: the block ILU alone",
+            tfmb::cli::range(1, 8));
   table.add("--coupling-switch-drop", o.settings.coupling_switch_drop, "1",
             "--turbulence-coupling auto: density residual drop from which the steps are "
             "coupled",

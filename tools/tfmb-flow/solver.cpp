@@ -897,15 +897,14 @@ LinearOperator FlowSolver::matrix_free_operator(const std::vector<double>& diag_
     // near-vacuum node (a lip corner) perturbed by the global scale leaves the linear range and
     // its difference quotient stalled GMRES once the residual was small. Not below 1e-4 of the
     // global choice, where round-off would take over.
-    constexpr int kChunks = 64;
-    double chunk_norm2[kChunks];
-    double chunk_limit[kChunks];
+    double chunk_norm2[kReductionChunks];
+    double chunk_limit[kReductionChunks];
 #pragma omp parallel for schedule(static)
-    for (int c = 0; c < kChunks; ++c) {
+    for (int c = 0; c < kReductionChunks; ++c) {
       double norm2 = 0.0;
       double limit = std::numeric_limits<double>::infinity();
-      const int last = static_cast<int>(static_cast<long>(n) * (c + 1) / kChunks);
-      for (int i = static_cast<int>(static_cast<long>(n) * c / kChunks); i < last; ++i) {
+      const int last = static_cast<int>(chunk_begin(n, c + 1));
+      for (int i = static_cast<int>(chunk_begin(n, c)); i < last; ++i) {
         const State& u = base->u[i];
         const double* xi = x.data() + nb * static_cast<std::size_t>(i);
         norm2 += xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2] + xi[3] * xi[3];
@@ -928,7 +927,7 @@ LinearOperator FlowSolver::matrix_free_operator(const std::vector<double>& diag_
     }
     double x_norm2 = 0.0;
     double node_limit = std::numeric_limits<double>::infinity();
-    for (int c = 0; c < kChunks; ++c) {
+    for (int c = 0; c < kReductionChunks; ++c) {
       x_norm2 += chunk_norm2[c];
       node_limit = std::min(node_limit, chunk_limit[c]);
     }
@@ -1484,17 +1483,33 @@ void FlowSolver::linear_step(SolveLoop& s) {
       }
     }
   }
-  ilu_.factorize(system_matrix(), settings_.ilu_partitions, settings_.ilu_fill_level);
+  factorize_preconditioner();
   if (newton_krylov_step(s)) {
     s.lin = newton_krylov_solve(s);
   } else {
-    s.lin = gmres(system_matrix(), ilu_, s.rhs, s.du, settings_.linear_tolerance,
+    s.lin = gmres(system_matrix(), preconditioner(), s.rhs, s.du, settings_.linear_tolerance,
                   settings_.gmres_restart, settings_.gmres_max_iterations, gmres_workspace_);
   }
   s.rec.linear_iterations = s.lin.iterations;
   s.rec.linear_residual = s.lin.relative_residual;
   s.last_linear_failed = !(s.lin.relative_residual <= kLinearSolveFailed);
   s.report.linear_iterations += s.lin.iterations;
+}
+
+void FlowSolver::factorize_preconditioner() {
+  if (settings_.multigrid_levels > 1) {
+    AggregationMultigrid::Options options;
+    options.max_levels = settings_.multigrid_levels;
+    multigrid_.setup(system_matrix(), settings_.ilu_partitions, settings_.ilu_fill_level, options);
+  } else {
+    ilu_.factorize(system_matrix(), settings_.ilu_partitions, settings_.ilu_fill_level);
+  }
+}
+
+const Preconditioner& FlowSolver::preconditioner() const {
+  if (settings_.multigrid_levels > 1)
+    return multigrid_;
+  return ilu_;
 }
 
 // The Newton-Krylov step: the start of a Newton phase (its state kept for a fallback), the
@@ -1529,9 +1544,10 @@ GmresResult FlowSolver::newton_krylov_solve(SolveLoop& s) {
   s.forcing_previous = forcing;
   // no restart: restarted GMRES(20) stagnated outright (relative residual 1.0 after 80
   // iterations) on nasa-2dcd at CFL 1e4 where the full basis converged in 137-183
-  const GmresResult lin = gmres(matrix_free_operator(s.diag_scale), ilu_, s.rhs, s.du, forcing,
-                                std::max(settings_.gmres_restart, settings_.gmres_max_iterations),
-                                settings_.gmres_max_iterations, gmres_workspace_);
+  const GmresResult lin =
+      gmres(matrix_free_operator(s.diag_scale), preconditioner(), s.rhs, s.du, forcing,
+            std::max(settings_.gmres_restart, settings_.gmres_max_iterations),
+            settings_.gmres_max_iterations, gmres_workspace_);
   compute_residual(false);  // back to the state's own residual, gradients and viscosities
   return lin;
 }

@@ -14,6 +14,7 @@
 #include "gradient_lsq.hpp"
 #include "linear_solver.hpp"
 #include "mesh_dual.hpp"
+#include "multigrid.hpp"
 #include "scalar_ilu.hpp"
 #include "turbulence_sst.hpp"
 
@@ -136,6 +137,9 @@ struct SolverSettings {
   int ilu_partitions = 2;
   // Level of fill of the block ILU preconditioner (0: ILU(0); see BlockIlu0)
   int ilu_fill_level = 0;
+  // Levels of the aggregation multigrid preconditioner (see AggregationMultigrid), the fine one
+  // included; 1: the block ILU alone
+  int multigrid_levels = 1;
   int gmres_max_iterations = 80;
   double max_relative_update = 0.5;  // largest relative change of rho or p per node and iteration
   // SA: largest change of nu_tilde per node and iteration relative to |nu_tilde| + nu (k-omega
@@ -466,6 +470,9 @@ class FlowSolver {
   bool wall_stationary(SolveLoop& s);
   bool check_convergence(SolveLoop& s);  // true: converged
   void linear_step(SolveLoop& s);
+  // the block ILU or, with multigrid_levels > 1, the aggregation multigrid of the system matrix
+  void factorize_preconditioner();
+  const Preconditioner& preconditioner() const;
   GmresResult newton_krylov_solve(SolveLoop& s);
   void relax_update(SolveLoop& s);
   double node_relaxation(int i, const double* du_i, bool coupled, State& un) const;
@@ -534,6 +541,7 @@ class FlowSolver {
   std::vector<double> spectral_radius_;  // sum over faces of (|V.n| + c|n|) per node
   BlockSparseMatrix jac_;
   BlockIlu0 ilu_;
+  AggregationMultigrid multigrid_;
   ScalarIlu0 sa_ilu_;
   GmresWorkspace gmres_workspace_;
   bool limiter_frozen_ = false;
