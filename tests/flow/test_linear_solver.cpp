@@ -6,6 +6,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "grid_graph.hpp"
 #include "tfmb-flow/linear_solver.hpp"
 
 #ifdef _OPENMP
@@ -92,16 +93,7 @@ struct GridSystem {
 
 GridSystem grid_system(int m, int nb, unsigned seed, double noise, double diagonal) {
   const int n = m * m;
-  std::vector<std::array<int, 2>> edges;
-  for (int j = 0; j < m; ++j) {
-    for (int i = 0; i < m; ++i) {
-      if (i + 1 < m)
-        edges.push_back({j * m + i, j * m + i + 1});
-      if (j + 1 < m)
-        edges.push_back({j * m + i, (j + 1) * m + i});
-    }
-  }
-  GridSystem g{make_pattern(n, edges, nb), std::vector<double>(nb * n), {}};
+  GridSystem g{test_grids::grid_graph_pattern(m, nb), std::vector<double>(nb * n), {}};
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int i = 0; i < n; ++i) {

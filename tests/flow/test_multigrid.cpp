@@ -6,6 +6,7 @@
 #include <random>
 #include <vector>
 
+#include "grid_graph.hpp"
 #include "tfmb-flow/linear_solver.hpp"
 #include "tfmb-flow/multigrid.hpp"
 
@@ -24,16 +25,8 @@ struct Grid {
 Grid anisotropic_grid(int m, int nb, double coupling_x, double coupling_y, double shift,
                       double noise, unsigned seed) {
   const int n = m * m;
-  std::vector<std::array<int, 2>> edges;
-  for (int j = 0; j < m; ++j) {
-    for (int i = 0; i < m; ++i) {
-      if (i + 1 < m)
-        edges.push_back({j * m + i, j * m + i + 1});
-      if (j + 1 < m)
-        edges.push_back({j * m + i, (j + 1) * m + i});
-    }
-  }
-  Grid g{make_pattern(n, edges, nb), std::vector<double>(static_cast<std::size_t>(nb) * n)};
+  Grid g{test_grids::grid_graph_pattern(m, nb),
+         std::vector<double>(static_cast<std::size_t>(nb) * n)};
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int row = 0; row < n; ++row) {
