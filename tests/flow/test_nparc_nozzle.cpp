@@ -185,13 +185,16 @@ TEST(NparcNozzle, NewtonStepsAfterTheLimiterFreezeReachTheDefectCorrectionSoluti
 }
 
 // The aggregation multigrid preconditioner (AggregationMultigrid, two levels) against the block
-// ILU on 81 x 21 and 161 x 41 nodes (4 times as many), pe/p0 = 0.75 with its shock. Both reach
-// the exact quasi-1D solution within the yardsticks of NormalShockExitPressure075 (the limiter
-// is frozen at a different iteration in each run, so the discrete equations, and the state
-// within a cell of the shock, differ by more than the solver's tolerance). Multigrid's GMRES
-// iterations per nonlinear iteration grow less from the coarse mesh to the fine one than ILU's,
-// and are fewer on the fine mesh.
-TEST(NparcNozzle, MultigridPreconditionerGrowsLessWithTheMeshThanIlu) {
+// ILU on 81 x 21 and 161 x 41 nodes, pe/p0 = 0.75 with its shock. Both reach the exact quasi-1D
+// solution within the yardsticks of NormalShockExitPressure075 (the limiter is frozen at a
+// different iteration in each run, so the discrete equations, and the state within a cell of the
+// shock, differ by more than the solver's tolerance), and multigrid takes fewer GMRES iterations
+// per nonlinear iteration on both meshes (2.7 and 5.9 against 5.5 and 12.1). How that count
+// grows with the mesh is printed, not asserted: on meshes this small multigrid's grows about as
+// ILU's does (2.15 against 2.21); the growth is checked on a linear system in
+// Multigrid.GmresIterationsGrowLessWithTheGridThanWithIlu, and NPARC 240 x 60 against 480 x 120
+// is in tools/tfmb-flow/README.md.
+TEST(NparcNozzle, MultigridPreconditionerTakesFewerGmresIterationsThanIlu) {
   const Quasi1dNozzle exact(nparc::area_in, 0.0, 5.0, 10.0, kAir.gamma, 0.75);
   ASSERT_TRUE(exact.has_shock());
   const double mdot_exact = exact.mass_flow(nparc::kP0, nparc::kT0, kAir.R) * nparc::kInch;
@@ -231,7 +234,7 @@ TEST(NparcNozzle, MultigridPreconditionerGrowsLessWithTheMeshThanIlu) {
       "  GMRES iterations per nonlinear iteration, 161 x 41 over 81 x 21: ILU %.2f, "
       "multigrid %.2f\n",
       ilu_growth, mg_growth);
-  EXPECT_LT(mg_growth, ilu_growth);
+  EXPECT_LT(per_iteration(mg_coarse), per_iteration(ilu_coarse));
   EXPECT_LT(per_iteration(mg_fine), per_iteration(ilu_fine));
 }
 
