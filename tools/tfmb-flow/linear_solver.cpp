@@ -94,23 +94,30 @@ decltype(auto) dispatch(int block_size, F&& f) {
   }
 }
 
-// y_i = (A x)_i for block row i
-template <int B>
-inline void multiply_row(const BlockSparseMatrix& m, const std::vector<double>& x,
-                         std::vector<double>& y, int i) {
+// y_i = (A x)_i for block row i, the blocks' values from `values` (the matrix's own, or a
+// single-precision copy: SinglePrecisionMatrix)
+template <int B, typename Value>
+inline void multiply_row(const BlockSparseMatrix& m, const Value* values,
+                         const std::vector<double>& x, std::vector<double>& y, int i) {
   double acc[B] = {};
   for (int p = m.row_ptr[i]; p < m.row_ptr[i + 1]; ++p) {
-    const double* a = m.block(p);
+    const Value* a = values + B * B * static_cast<std::size_t>(p);
     const double* xc = x.data() + B * static_cast<std::size_t>(m.col[p]);
     for (int r = 0; r < B; ++r) {
       double s = 0.0;
       for (int c = 0; c < B; ++c)
-        s += a[B * r + c] * xc[c];
+        s += static_cast<double>(a[B * r + c]) * xc[c];
       acc[r] += s;
     }
   }
   for (int r = 0; r < B; ++r)
     y[B * static_cast<std::size_t>(i) + r] = acc[r];
+}
+
+template <int B>
+inline void multiply_row(const BlockSparseMatrix& m, const std::vector<double>& x,
+                         std::vector<double>& y, int i) {
+  multiply_row<B>(m, m.val.data(), x, y, i);
 }
 
 template <int B>
@@ -262,6 +269,26 @@ void BlockSparseMatrix::set_zero() {
 void BlockSparseMatrix::multiply(const std::vector<double>& x, std::vector<double>& y) const {
   y.resize(block_size * static_cast<std::size_t>(num_rows));
   dispatch(block_size, [&](auto b) { multiply_fixed<decltype(b)::value>(*this, x, y); });
+}
+
+void SinglePrecisionMatrix::assign(const BlockSparseMatrix& a) {
+  pattern = &a;
+  val.resize(a.val.size());
+  const long size = static_cast<long>(a.val.size());
+#pragma omp parallel for schedule(static) if (size > 16000)
+  for (long k = 0; k < size; ++k)
+    val[k] = static_cast<float>(a.val[k]);
+}
+
+void SinglePrecisionMatrix::multiply(const std::vector<double>& x, std::vector<double>& y) const {
+  const BlockSparseMatrix& m = *pattern;
+  y.resize(m.block_size * static_cast<std::size_t>(m.num_rows));
+  dispatch(m.block_size, [&](auto b) {
+    const int n = m.num_rows;
+#pragma omp parallel for schedule(static) if (n > 1000)
+    for (int i = 0; i < n; ++i)
+      multiply_row<decltype(b)::value>(m, val.data(), x, y, i);
+  });
 }
 
 void BlockSparseMatrix::multiply_rows(const std::vector<double>& x, std::vector<double>& y,

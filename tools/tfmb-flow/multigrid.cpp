@@ -44,15 +44,30 @@ std::vector<unsigned> imposed_components(const BlockSparseMatrix& a) {
 }
 
 // r = b - A x
-void residual(const BlockSparseMatrix& a, const std::vector<double>& b,
+void residual(const SinglePrecisionMatrix& a, const std::vector<double>& b,
               const std::vector<double>& x, std::vector<double>& r) {
   r.resize(b.size());
   a.multiply(x, r);
   const long n = static_cast<long>(b.size());
-  const int nb = a.block_size;
+  const int nb = a.pattern->block_size;
 #pragma omp parallel for schedule(static) if (n > kThreadedNodes * nb)
   for (long k = 0; k < n; ++k)
     r[k] = b[k] - r[k];
+}
+
+// The nodes of each aggregate, in node order (a counting sort by aggregate).
+void aggregate_members(const std::vector<int>& aggregate, int count, std::vector<int>& member_ptr,
+                       std::vector<int>& members) {
+  const int n = static_cast<int>(aggregate.size());
+  member_ptr.assign(count + 1, 0);
+  members.resize(n);
+  for (int i = 0; i < n; ++i)
+    ++member_ptr[aggregate[i] + 1];
+  for (int c = 0; c < count; ++c)
+    member_ptr[c + 1] += member_ptr[c];
+  std::vector<int> next(member_ptr.begin(), member_ptr.end() - 1);
+  for (int i = 0; i < n; ++i)
+    members[next[aggregate[i]]++] = i;
 }
 
 }  // namespace
@@ -94,17 +109,9 @@ std::vector<int> pairwise_aggregates(const BlockSparseMatrix& a, double strong_f
 
 BlockSparseMatrix galerkin_coarse_matrix(const BlockSparseMatrix& a,
                                          const std::vector<int>& aggregate, int count) {
-  const int n = a.num_rows;
   const int be = a.block_entries();
-  // the nodes of each aggregate, in node order
-  std::vector<int> member_ptr(count + 1, 0), members(n);
-  for (int i = 0; i < n; ++i)
-    ++member_ptr[aggregate[i] + 1];
-  for (int c = 0; c < count; ++c)
-    member_ptr[c + 1] += member_ptr[c];
-  std::vector<int> next(member_ptr.begin(), member_ptr.end() - 1);
-  for (int i = 0; i < n; ++i)
-    members[next[aggregate[i]]++] = i;
+  std::vector<int> member_ptr, members;
+  aggregate_members(aggregate, count, member_ptr, members);
 
   BlockSparseMatrix coarse;
   coarse.num_rows = count;
@@ -184,20 +191,17 @@ void AggregationMultigrid::setup(const BlockSparseMatrix& a, int partitions, int
     level.aggregate.resize(fine.num_rows);
     for (int i = 0; i < fine.num_rows; ++i)
       level.aggregate[i] = second[first[i]];
-    level.member_ptr.assign(count + 1, 0);
-    level.members.resize(fine.num_rows);
-    for (int i = 0; i < fine.num_rows; ++i)
-      ++level.member_ptr[level.aggregate[i] + 1];
-    for (int c = 0; c < count; ++c)
-      level.member_ptr[c + 1] += level.member_ptr[c];
-    std::vector<int> next(level.member_ptr.begin(), level.member_ptr.end() - 1);
-    for (int i = 0; i < fine.num_rows; ++i)
-      level.members[next[level.aggregate[i]]++] = i;
+    aggregate_members(level.aggregate, count, level.member_ptr, level.members);
     Level coarse;
-    coarse.matrix = galerkin_coarse_matrix(fine, level.aggregate, count);
+    // the pairs' matrix summed again over the second matching: the same sums as over the
+    // fine matrix, from half as many blocks
+    coarse.matrix = galerkin_coarse_matrix(paired, second, count);
     coarse.smoother.factorize(coarse.matrix, partitions, 0);
     levels_.push_back(std::move(coarse));
   }
+  // after the last push_back: a copy keeps its matrix by reference
+  for (int l = 0; l < levels(); ++l)
+    levels_[l].product.assign(matrix(l));
 }
 
 void AggregationMultigrid::apply(const std::vector<double>& b, std::vector<double>& x) const {
@@ -224,7 +228,7 @@ void AggregationMultigrid::cycle(int l, const std::vector<double>& b,
   level.smoother.apply(b, x);
   if (l + 1 == levels()) {
     for (int sweep = 1; sweep < options_.coarsest_sweeps; ++sweep) {
-      residual(a, b, x, level.r);
+      residual(level.product, b, x, level.r);
       level.smoother.apply(level.r, level.e);
 #pragma omp parallel for schedule(static) if (n > kThreadedNodes)
       for (long k = 0; k < size; ++k)
@@ -232,7 +236,7 @@ void AggregationMultigrid::cycle(int l, const std::vector<double>& b,
     }
     return;
   }
-  residual(a, b, x, level.r);
+  residual(level.product, b, x, level.r);
   const Level& coarse = levels_[l + 1];
   const int count = coarse.matrix.num_rows;
   coarse.b.resize(static_cast<std::size_t>(nb) * count);
@@ -258,7 +262,7 @@ void AggregationMultigrid::cycle(int l, const std::vector<double>& b,
     for (int v = 0; v < nb; ++v)
       to[v] = from[v];
   }
-  a.multiply(level.e, level.q);
+  level.product.multiply(level.e, level.q);
   const double qq = dot_product(level.q, level.q);
   const double alpha = qq > 0.0 ? dot_product(level.r, level.q) / qq : 0.0;
 #pragma omp parallel for schedule(static) if (n > kThreadedNodes)

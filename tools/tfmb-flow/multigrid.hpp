@@ -51,6 +51,7 @@ class AggregationMultigrid final : public Preconditioner {
   struct Level {
     BlockSparseMatrix matrix;  // empty on the fine level (fine_ is used)
     BlockIlu0 smoother;
+    SinglePrecisionMatrix product;         // the level's matrix, for the cycle's products
     std::vector<int> aggregate;            // of each node, on the next coarser level
     std::vector<int> member_ptr, members;  // the nodes of each aggregate of the next level
     mutable std::vector<double> b, x, r, e, q;
