@@ -114,19 +114,14 @@ inline void multiply_row(const BlockSparseMatrix& m, const Value* values,
     y[B * static_cast<std::size_t>(i) + r] = acc[r];
 }
 
-template <int B>
-inline void multiply_row(const BlockSparseMatrix& m, const std::vector<double>& x,
-                         std::vector<double>& y, int i) {
-  multiply_row<B>(m, m.val.data(), x, y, i);
-}
-
-template <int B>
-void multiply_fixed(const BlockSparseMatrix& m, const std::vector<double>& x,
+// y = A x on m's pattern with the values `values`
+template <int B, typename Value>
+void multiply_fixed(const BlockSparseMatrix& m, const Value* values, const std::vector<double>& x,
                     std::vector<double>& y) {
   const int n = m.num_rows;
 #pragma omp parallel for schedule(static) if (n > 1000)
   for (int i = 0; i < n; ++i)
-    multiply_row<B>(m, x, y, i);
+    multiply_row<B>(m, values, x, y, i);
 }
 
 template <int B>
@@ -137,7 +132,7 @@ void multiply_rows_fixed(const BlockSparseMatrix& m, const std::vector<double>& 
   const int count = static_cast<int>(rows.size());
 #pragma omp parallel for schedule(static) if (count > 100)
   for (int k = 0; k < count; ++k)
-    multiply_row<B>(m, x, y, rows[k]);
+    multiply_row<B>(m, m.val.data(), x, y, rows[k]);
 }
 
 template <int B>
@@ -268,7 +263,8 @@ void BlockSparseMatrix::set_zero() {
 
 void BlockSparseMatrix::multiply(const std::vector<double>& x, std::vector<double>& y) const {
   y.resize(block_size * static_cast<std::size_t>(num_rows));
-  dispatch(block_size, [&](auto b) { multiply_fixed<decltype(b)::value>(*this, x, y); });
+  dispatch(block_size,
+           [&](auto b) { multiply_fixed<decltype(b)::value>(*this, val.data(), x, y); });
 }
 
 void SinglePrecisionMatrix::assign(const BlockSparseMatrix& a) {
@@ -283,12 +279,7 @@ void SinglePrecisionMatrix::assign(const BlockSparseMatrix& a) {
 void SinglePrecisionMatrix::multiply(const std::vector<double>& x, std::vector<double>& y) const {
   const BlockSparseMatrix& m = *pattern;
   y.resize(m.block_size * static_cast<std::size_t>(m.num_rows));
-  dispatch(m.block_size, [&](auto b) {
-    const int n = m.num_rows;
-#pragma omp parallel for schedule(static) if (n > 1000)
-    for (int i = 0; i < n; ++i)
-      multiply_row<decltype(b)::value>(m, val.data(), x, y, i);
-  });
+  dispatch(m.block_size, [&](auto b) { multiply_fixed<decltype(b)::value>(m, val.data(), x, y); });
 }
 
 void BlockSparseMatrix::multiply_rows(const std::vector<double>& x, std::vector<double>& y,
