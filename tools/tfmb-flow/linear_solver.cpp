@@ -94,8 +94,8 @@ decltype(auto) dispatch(int block_size, F&& f) {
   }
 }
 
-// y_i = (A x)_i for block row i, the blocks' values from `values` (the matrix's own, or a
-// single-precision copy: SinglePrecisionMatrix)
+// y_i = (A x)_i for block row i, the blocks' values from `values`: the matrix's own (row-major
+// blocks), or a single-precision copy (SinglePrecisionMatrix, column-major blocks)
 template <int B, typename Value>
 inline void multiply_row(const BlockSparseMatrix& m, const Value* values,
                          const std::vector<double>& x, std::vector<double>& y, int i) {
@@ -103,11 +103,20 @@ inline void multiply_row(const BlockSparseMatrix& m, const Value* values,
   for (int p = m.row_ptr[i]; p < m.row_ptr[i + 1]; ++p) {
     const Value* a = values + B * B * static_cast<std::size_t>(p);
     const double* xc = x.data() + B * static_cast<std::size_t>(m.col[p]);
-    for (int r = 0; r < B; ++r) {
-      double s = 0.0;
+    if constexpr (std::is_same_v<Value, double>) {
+      for (int r = 0; r < B; ++r) {
+        double s = 0.0;
+        for (int c = 0; c < B; ++c)
+          s += a[B * r + c] * xc[c];
+        acc[r] += s;
+      }
+    } else {
+      // column by column: each column's B floats are contiguous, so they widen as a vector;
+      // row by row the compiler gathered single floats across rows (NPARC 240 x 60: the float
+      // product took 1.45 times the double one's samples)
       for (int c = 0; c < B; ++c)
-        s += static_cast<double>(a[B * r + c]) * xc[c];
-      acc[r] += s;
+        for (int r = 0; r < B; ++r)
+          acc[r] += static_cast<double>(a[B * c + r]) * xc[c];
     }
   }
   for (int r = 0; r < B; ++r)
@@ -271,9 +280,16 @@ void SinglePrecisionMatrix::assign(const BlockSparseMatrix& a) {
   pattern = &a;
   val.resize(a.val.size());
   const long size = static_cast<long>(a.val.size());
+  const int b = a.block_size;
+  const long blocks = size / (b * b);
 #pragma omp parallel for schedule(static) if (size > 16000)
-  for (long k = 0; k < size; ++k)
-    val[k] = static_cast<float>(a.val[k]);
+  for (long p = 0; p < blocks; ++p) {
+    const double* in = a.val.data() + p * b * b;
+    float* out = val.data() + p * b * b;
+    for (int r = 0; r < b; ++r)
+      for (int c = 0; c < b; ++c)
+        out[b * c + r] = static_cast<float>(in[b * r + c]);  // column-major: multiply_row
+  }
 }
 
 void SinglePrecisionMatrix::multiply(const std::vector<double>& x, std::vector<double>& y) const {
@@ -484,18 +500,20 @@ void for_each_entry(std::size_t n, Element element) {
 }
 
 // Modified Gram-Schmidt of w against v[0..j], its norm and the next basis vector
-// v[j + 1] = w / |w|, in one parallel region: column[i] = w . v_i (w already reduced by
-// v_0..v_{i-1}), column[j + 1] = |w|; returns |w|. Each projection's subtraction is fused with
-// the next projection and the last with the norm (one pass over memory each). The chunks and
-// the order of their sums are those of chunked_sum(), so the bits are the same whatever the
-// thread count.
-// One region with a barrier per projection instead of a fork and a join per projection: with
+// v[j + 1] = w / |w| (also written to `current` in double precision, as the basis holds it: the
+// next iteration's input), in one parallel region: column[i] = w . v_i (w already reduced by
+// v_0..v_{i-1}), column[j + 1] = |w|; returns |w|. Each projection's subtraction is fused with the
+// next projection and the last with the norm (one pass over memory each). The chunks and the order
+// of their sums are those of chunked_sum(), so the bits are the same whatever the thread count. One
+// region with a barrier per projection instead of a fork and a join per projection: with
 // OMP_WAIT_POLICY=passive each of them puts the idle thread to sleep and wakes it again.
-double orthogonalize(std::vector<double>& w, std::vector<std::vector<double>>& v, int j,
-                     double* column) {
+template <class Basis>
+double orthogonalize(std::vector<double>& w, std::vector<std::vector<Basis>>& v, int j,
+                     double* column, std::vector<double>& current) {
   const std::size_t n = w.size();
   double* wp = w.data();
-  double* next = v[j + 1].data();
+  Basis* next = v[j + 1].data();
+  double* next_exact = current.data();
   // double-buffered chunk sums: a thread may start projection i + 1 while another still adds
   // up projection i's sums; it cannot reach i + 2 before that one has passed i + 1's barrier
   double partial[2][kReductionChunks];
@@ -504,22 +522,31 @@ double orthogonalize(std::vector<double>& w, std::vector<std::vector<double>>& v
   {
     double previous = 0.0;  // the last projection, the same in every thread
     for (int i = 0; i <= j + 1; ++i) {
-      const double* subtract = i > 0 ? v[i - 1].data() : nullptr;
-      const double* onto = i <= j ? v[i].data() : wp;
+      const Basis* subtract = i > 0 ? v[i - 1].data() : nullptr;
+      const Basis* onto = i <= j ? v[i].data() : nullptr;  // nullptr: |w|^2
       double* sums = partial[i % 2];
       const double h = previous;
 #pragma omp for schedule(static)
       for (int c = 0; c < kReductionChunks; ++c) {
+        const std::size_t first = chunk_begin(n, c);
         const std::size_t last = chunk_begin(n, c + 1);
         double s = 0.0;
-        if (subtract) {
-          for (std::size_t k = chunk_begin(n, c); k < last; ++k) {
+        if (subtract && onto) {
+          for (std::size_t k = first; k < last; ++k) {
             wp[k] -= h * subtract[k];
             s += wp[k] * onto[k];
           }
-        } else {
-          for (std::size_t k = chunk_begin(n, c); k < last; ++k)
+        } else if (subtract) {
+          for (std::size_t k = first; k < last; ++k) {
+            wp[k] -= h * subtract[k];
+            s += wp[k] * wp[k];
+          }
+        } else if (onto) {
+          for (std::size_t k = first; k < last; ++k)
             s += wp[k] * onto[k];
+        } else {
+          for (std::size_t k = first; k < last; ++k)
+            s += wp[k] * wp[k];
         }
         sums[c] = s;
       }
@@ -537,8 +564,10 @@ double orthogonalize(std::vector<double>& w, std::vector<std::vector<double>>& v
 #pragma omp for schedule(static) nowait
       for (int c = 0; c < kReductionChunks; ++c) {
         const std::size_t last = chunk_begin(n, c + 1);
-        for (std::size_t k = chunk_begin(n, c); k < last; ++k)
-          next[k] = wp[k] / w_norm;
+        for (std::size_t k = chunk_begin(n, c); k < last; ++k) {
+          next[k] = static_cast<Basis>(wp[k] / w_norm);
+          next_exact[k] = next[k];  // what the basis holds
+        }
       }
     }
   }
@@ -573,56 +602,91 @@ GmresResult gmres(const BlockSparseMatrix& a, const Preconditioner& m, const std
   return gmres(multiply, m, b, x, rel_tol, restart, max_iterations, ws);
 }
 
-GmresResult gmres(const LinearOperator& a, const Preconditioner& m, const std::vector<double>& b,
-                  std::vector<double>& x, double rel_tol, int restart, int max_iterations,
-                  GmresWorkspace& ws) {
+namespace {
+
+template <class Basis>
+std::vector<std::vector<Basis>>& basis_storage(GmresWorkspace& ws);
+template <>
+std::vector<std::vector<double>>& basis_storage<double>(GmresWorkspace& ws) {
+  return ws.v;
+}
+template <>
+std::vector<std::vector<float>>& basis_storage<float>(GmresWorkspace& ws) {
+  return ws.v_single;
+}
+template <class Basis>
+std::vector<std::vector<Basis>>& preconditioned_storage(GmresWorkspace& ws);
+template <>
+std::vector<std::vector<double>>& preconditioned_storage<double>(GmresWorkspace& ws) {
+  return ws.z;
+}
+template <>
+std::vector<std::vector<float>>& preconditioned_storage<float>(GmresWorkspace& ws) {
+  return ws.z_single;
+}
+
+// Restarted GMRES with its basis stored as Basis (double, or float for the loose solves).
+template <class Basis>
+GmresResult gmres_with_basis(const LinearOperator& a, const Preconditioner& m,
+                             const std::vector<double>& b, std::vector<double>& x, double rel_tol,
+                             int restart, int max_iterations, GmresWorkspace& ws) {
   const std::size_t n = b.size();
   x.assign(n, 0.0);
   GmresResult result;
   const double b_norm = std::sqrt(dot_product(b, b));
   if (b_norm == 0.0)
     return result;
+  auto& v = basis_storage<Basis>(ws);
   // the basis only grows: a Newton step's 81 vectors freed for a defect-correction step's 21
   // were allocated again, page fault by page fault, by the next Newton step
-  if (ws.v.size() < static_cast<std::size_t>(restart + 1))
-    ws.v.resize(restart + 1);
-  for (auto& vec : ws.v)
+  if (v.size() < static_cast<std::size_t>(restart + 1))
+    v.resize(restart + 1);
+  for (auto& vec : v)
     vec.resize(n);
   const bool flexible = m.flexible();
-  const std::size_t preconditioned = flexible ? restart : 1;
-  if (ws.z.size() < preconditioned)
-    ws.z.resize(preconditioned);
-  for (std::size_t i = 0; i < preconditioned; ++i)
-    ws.z[i].resize(n);
+  auto& z = preconditioned_storage<Basis>(ws);
+  if (flexible && z.size() < static_cast<std::size_t>(restart))
+    z.resize(restart);
+  for (std::size_t i = 0; flexible && i < z.size(); ++i)
+    z[i].resize(n);
   ws.h.assign((restart + 1) * restart, 0.0);
   ws.cs.assign(restart, 0.0);
   ws.sn.assign(restart, 0.0);
   ws.g.assign(restart + 1, 0.0);
   ws.w.resize(n);
-  auto& v = ws.v;
+  ws.current.resize(n);
+  ws.preconditioned.resize(n);
   auto& cs = ws.cs;
   auto& sn = ws.sn;
   auto& g = ws.g;
   auto& w = ws.w;
+  auto& current = ws.current;                // v_j in double precision, as the basis holds it
+  auto& preconditioned = ws.preconditioned;  // M^-1 v_j, or M^-1 (V y)
   auto H = [&](int i, int j) -> double& { return ws.h[i * restart + j]; };
   std::vector<double>& r = ws.r;
   r = b;  // x = 0
   double beta = b_norm;
   while (true) {
-    for_each_entry(n, [&](std::size_t k) { v[0][k] = r[k] / beta; });
+    for_each_entry(n, [&](std::size_t k) {
+      v[0][k] = static_cast<Basis>(r[k] / beta);
+      current[k] = v[0][k];
+    });
     std::fill(g.begin(), g.end(), 0.0);
     g[0] = beta;
     int j = 0;
     for (; j < restart && result.iterations < max_iterations; ++j) {
       ++result.iterations;
-      std::vector<double>& z = ws.z[flexible ? j : 0];
-      m.apply(v[j], z);
-      a(z, w);
+      m.apply(current, preconditioned);
+      a(preconditioned, w);
+      if (flexible) {
+        Basis* zj = z[j].data();
+        for_each_entry(n, [&](std::size_t k) { zj[k] = static_cast<Basis>(preconditioned[k]); });
+      }
       // modified Gram-Schmidt: H(i, j) = w . v_i, w -= H(i, j) v_i for i = 0..j, then
       // H(j + 1, j) = |w| and v_{j+1} = w / |w|
       std::vector<double>& column = ws.column;
       column.resize(j + 2);
-      const double wn = orthogonalize(w, v, j, column.data());
+      const double wn = orthogonalize(w, v, j, column.data(), current);
       for (int i = 0; i <= j + 1; ++i)
         H(i, j) = column[i];
       for (int i = 0; i < j; ++i) {  // apply earlier Givens rotations
@@ -658,7 +722,7 @@ GmresResult gmres(const LinearOperator& a, const Preconditioner& m, const std::v
       for_each_entry(n, [&](std::size_t k) {
         double s = 0.0;
         for (int i = 0; i < j; ++i)
-          s += y[i] * ws.z[i][k];
+          s += y[i] * z[i][k];
         x[k] += s;
       });
     } else {
@@ -668,8 +732,8 @@ GmresResult gmres(const LinearOperator& a, const Preconditioner& m, const std::v
           s += y[i] * v[i][k];
         w[k] = s;
       });
-      m.apply(w, ws.z[0]);
-      for_each_entry(n, [&](std::size_t k) { x[k] += ws.z[0][k]; });
+      m.apply(w, preconditioned);
+      for_each_entry(n, [&](std::size_t k) { x[k] += preconditioned[k]; });
     }
     if (result.relative_residual <= rel_tol || result.iterations >= max_iterations)
       break;
@@ -681,6 +745,16 @@ GmresResult gmres(const LinearOperator& a, const Preconditioner& m, const std::v
       break;
   }
   return result;
+}
+
+}  // namespace
+
+GmresResult gmres(const LinearOperator& a, const Preconditioner& m, const std::vector<double>& b,
+                  std::vector<double>& x, double rel_tol, int restart, int max_iterations,
+                  GmresWorkspace& ws) {
+  if (rel_tol >= kSinglePrecisionBasisTolerance)
+    return gmres_with_basis<float>(a, m, b, x, rel_tol, restart, max_iterations, ws);
+  return gmres_with_basis<double>(a, m, b, x, rel_tol, restart, max_iterations, ws);
 }
 
 }  // namespace tfmb::flow

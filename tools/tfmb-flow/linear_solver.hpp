@@ -99,12 +99,26 @@ struct GmresResult {
   double relative_residual = 0.0;
 };
 
-// Krylov basis storage, kept between calls so that no solve allocates.
+// Krylov basis storage, kept between calls so that no solve allocates. A solve to a relative
+// tolerance of at least kSinglePrecisionBasisTolerance keeps its basis (and a flexible
+// preconditioner's preconditioned basis) in single precision, v_single and z_single; a tighter
+// one in double precision, v and z.
 struct GmresWorkspace {
   std::vector<std::vector<double>> v, z;
+  std::vector<std::vector<float>> v_single, z_single;
   std::vector<double> h, cs, sn, g, w, r, y;
+  std::vector<double> current, preconditioned;  // v_j as stored, and M^-1 v_j
   std::vector<double> column;  // one column of the Hessenberg matrix, as orthogonalised
 };
+
+// The loosest tolerance whose solves keep a double-precision basis. A single-precision basis
+// (Aliaga et al. 2023, "Compressed basis GMRES on high-performance graphics processing units",
+// Int. J. High Perform. Comput. Appl. 37:82) rounds each vector to 6e-8 relative, which perturbs
+// the Arnoldi relation, and so the residual GMRES estimates, by about that much; the arithmetic
+// stays in double precision and every restart recomputes the true residual. The nonlinear
+// steps solve to 0.02-0.4 (matrix-free forcing down to 1e-3), where the basis's orthogonalisation
+// is bound by memory: half the bytes.
+inline constexpr double kSinglePrecisionBasisTolerance = 1e-4;
 
 // Solves A x = b to ||b - A x|| <= rel_tol ||b|| or max_iterations, starting from x = 0.
 GmresResult gmres(const BlockSparseMatrix& a, const Preconditioner& precond,
