@@ -991,6 +991,9 @@ struct FlowSolver::SolveLoop {
   double cfl_scale = 1.0;
   double last_omega = 1.0;
   bool last_linear_failed = false;  // the last GMRES solve left more than half its residual
+  // the last assembled (defect-correction or first-order) GMRES solve stopped above its
+  // tolerance, at its iteration limit
+  bool last_linear_short = false;
   int collapsed = 0;
   double r_previous = std::numeric_limits<double>::infinity();
   double r_max = 0.0;
@@ -1374,7 +1377,13 @@ void FlowSolver::update_cfl(SolveLoop& s) {
                            r <= settings_.cfl_adaptive_residual_rise * s.r_previous;
       adaptive = healthy ? s.cfl * settings_.cfl_adaptive_growth : s.cfl * 0.7;
     }
-    s.cfl = std::min({std::max(ser, adaptive), s.cfl * settings_.cfl_growth, s.cfl_ceiling});
+    const double grown =
+        std::min({std::max(ser, adaptive), s.cfl * settings_.cfl_growth, s.cfl_ceiling});
+    // Not past a step the linear solver could not solve: after an assembled solve that stopped
+    // above its tolerance the CFL number does not grow. The residual-based SER would raise it
+    // again, and the next solves failed further (NPARC 0.75 480 x 120: GMRES at its 80-iteration
+    // limit twice at CFL 3,900-5,800, the residual then up fivefold and the CFL number cut).
+    s.cfl = s.last_linear_short ? std::min(grown, s.cfl) : grown;
     s.cfl = std::max(s.cfl, 1e-3);
   }
   s.r_previous = r;
@@ -1493,6 +1502,8 @@ void FlowSolver::linear_step(SolveLoop& s) {
   s.rec.linear_iterations = s.lin.iterations;
   s.rec.linear_residual = s.lin.relative_residual;
   s.last_linear_failed = !(s.lin.relative_residual <= kLinearSolveFailed);
+  s.last_linear_short =
+      !newton_krylov_step(s) && !(s.lin.relative_residual <= settings_.linear_tolerance);
   s.report.linear_iterations += s.lin.iterations;
 }
 
