@@ -302,6 +302,34 @@ TEST(NparcNozzle, FailedLinearSolveSwitchesToTheFrozenRoeJacobian) {
   EXPECT_EQ(run(RoeJacobian::frozen).roe_jacobian_frozen_from, 0);
 }
 
+// A defect-correction or first-order step whose GMRES solve stopped above its tolerance (here
+// at a 4-iteration limit) is not followed by a larger CFL number; steps whose solves converged
+// let it grow as before. Fails if the CFL number grows after a short solve.
+TEST(NparcNozzle, CflHeldAfterAShortLinearSolve) {
+  const Mesh mesh = nparc::make_mesh(61, 16);
+  SolverSettings s;
+  s.reference_state = {1.0, 300.0, 300.0, nparc::kP0};
+  s.max_iterations = 40;
+  s.order = 1;
+  s.gmres_max_iterations = 4;
+  FlowSolver solver(mesh, Geometry::planar, kAir, nparc::boundary_conditions(0.75), s);
+  solver.set_uniform(low_speed_start());
+  const SolveReport report = solver.solve();
+  int short_solves = 0, grown_after_converged_solve = 0;
+  for (std::size_t k = 0; k + 1 < report.history.size(); ++k) {
+    const IterationRecord& step = report.history[k];
+    const IterationRecord& next = report.history[k + 1];
+    if (step.linear_residual > s.linear_tolerance) {
+      ++short_solves;
+      EXPECT_LE(next.cfl, step.cfl) << "iteration " << step.iteration;
+    } else {
+      grown_after_converged_solve += next.cfl > step.cfl;
+    }
+  }
+  EXPECT_GE(short_solves, 3);
+  EXPECT_GE(grown_after_converged_solve, 3);
+}
+
 // The march of NPARC 0.75's first-order start on the case's 240 x 60 mesh (iterations 13-28 of
 // its log, CFL start 5): the shock transient takes the CFL below its start value for four
 // iterations with the residual up to 200 times its best, then recovers. That is no divergence;
