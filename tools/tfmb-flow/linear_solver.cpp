@@ -604,25 +604,18 @@ GmresResult gmres(const BlockSparseMatrix& a, const Preconditioner& m, const std
 
 namespace {
 
+// The workspace's basis and preconditioned basis in the precision Basis.
 template <class Basis>
-std::vector<std::vector<Basis>>& basis_storage(GmresWorkspace& ws);
-template <>
-std::vector<std::vector<double>>& basis_storage<double>(GmresWorkspace& ws) {
-  return ws.v;
-}
-template <>
-std::vector<std::vector<float>>& basis_storage<float>(GmresWorkspace& ws) {
-  return ws.v_single;
-}
+struct BasisStorage {
+  std::vector<std::vector<Basis>>& v;
+  std::vector<std::vector<Basis>>& z;
+};
 template <class Basis>
-std::vector<std::vector<Basis>>& preconditioned_storage(GmresWorkspace& ws);
-template <>
-std::vector<std::vector<double>>& preconditioned_storage<double>(GmresWorkspace& ws) {
-  return ws.z;
-}
-template <>
-std::vector<std::vector<float>>& preconditioned_storage<float>(GmresWorkspace& ws) {
-  return ws.z_single;
+BasisStorage<Basis> basis_storage(GmresWorkspace& ws) {
+  if constexpr (std::is_same_v<Basis, float>)
+    return {ws.v_single, ws.z_single};
+  else
+    return {ws.v, ws.z};
 }
 
 // Restarted GMRES with its basis stored as Basis (double, or float for the loose solves).
@@ -636,7 +629,8 @@ GmresResult gmres_with_basis(const LinearOperator& a, const Preconditioner& m,
   const double b_norm = std::sqrt(dot_product(b, b));
   if (b_norm == 0.0)
     return result;
-  auto& v = basis_storage<Basis>(ws);
+  const BasisStorage<Basis> storage = basis_storage<Basis>(ws);
+  auto& v = storage.v;
   // the basis only grows: a Newton step's 81 vectors freed for a defect-correction step's 21
   // were allocated again, page fault by page fault, by the next Newton step
   if (v.size() < static_cast<std::size_t>(restart + 1))
@@ -644,7 +638,7 @@ GmresResult gmres_with_basis(const LinearOperator& a, const Preconditioner& m,
   for (auto& vec : v)
     vec.resize(n);
   const bool flexible = m.flexible();
-  auto& z = preconditioned_storage<Basis>(ws);
+  auto& z = storage.z;
   if (flexible && z.size() < static_cast<std::size_t>(restart))
     z.resize(restart);
   for (std::size_t i = 0; flexible && i < z.size(); ++i)
