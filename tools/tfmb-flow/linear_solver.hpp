@@ -111,13 +111,14 @@ struct GmresWorkspace {
   std::vector<double> column;  // one column of the Hessenberg matrix, as orthogonalised
 };
 
-// The loosest tolerance whose solves keep a double-precision basis. A single-precision basis
-// (Aliaga et al. 2023, "Compressed basis GMRES on high-performance graphics processing units",
-// Int. J. High Perform. Comput. Appl. 37:82) rounds each vector to 6e-8 relative, which perturbs
-// the Arnoldi relation, and so the residual GMRES estimates, by about that much; the arithmetic
-// stays in double precision and every restart recomputes the true residual. The nonlinear
-// steps solve to 0.02-0.4 (matrix-free forcing down to 1e-3), where the basis's orthogonalisation
-// is bound by memory: half the bytes.
+// The tightest relative tolerance whose solves keep a single-precision basis (tighter ones keep
+// a double-precision basis). A single-precision basis (Aliaga et al. 2023, "Compressed basis
+// GMRES on high-performance graphics processing units", Int. J. High Perform. Comput. Appl.
+// 37:82) rounds each vector to 6e-8 relative, which perturbs the Arnoldi relation, and so the
+// residual GMRES estimates, by about that much; the arithmetic stays in double precision and
+// every restart recomputes the true residual. The nonlinear steps solve to 0.02-0.4
+// (matrix-free forcing down to 1e-3), where the basis's orthogonalisation is bound by memory:
+// half the bytes.
 inline constexpr double kSinglePrecisionBasisTolerance = 1e-4;
 
 // Solves A x = b to ||b - A x|| <= rel_tol ||b|| or max_iterations, starting from x = 0.
