@@ -1,8 +1,9 @@
-// The block pattern of an m x m grid graph (5-point stencil, nodes numbered along x first), shared
-// by the linear-solver and multigrid tests.
+// The block pattern of an m x m grid graph (5-point stencil, nodes numbered along x first) and the
+// true relative residual of a solution, shared by the linear-solver and multigrid tests.
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <vector>
 
 #include "tfmb-flow/linear_solver.hpp"
@@ -20,6 +21,19 @@ inline BlockSparseMatrix grid_graph_pattern(int m, int nb) {
     }
   }
   return make_pattern(m * m, edges, nb);
+}
+
+// |b - A x| / |b|, computed afresh (not GMRES's own estimate)
+inline double relative_residual(const BlockSparseMatrix& a, const std::vector<double>& b,
+                                const std::vector<double>& x) {
+  std::vector<double> ax;
+  a.multiply(x, ax);
+  double r2 = 0.0, b2 = 0.0;
+  for (std::size_t k = 0; k < b.size(); ++k) {
+    r2 += (b[k] - ax[k]) * (b[k] - ax[k]);
+    b2 += b[k] * b[k];
+  }
+  return std::sqrt(r2 / b2);
 }
 
 }  // namespace tfmb::flow::test_grids

@@ -541,12 +541,9 @@ double orthogonalize(std::vector<double>& w, std::vector<std::vector<Basis>>& v,
             wp[k] -= h * subtract[k];
             s += wp[k] * wp[k];
           }
-        } else if (onto) {
+        } else {  // i = 0: nothing to subtract yet
           for (std::size_t k = first; k < last; ++k)
             s += wp[k] * onto[k];
-        } else {
-          for (std::size_t k = first; k < last; ++k)
-            s += wp[k] * wp[k];
         }
         sums[c] = s;
       }
