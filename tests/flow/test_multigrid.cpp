@@ -222,3 +222,94 @@ TEST(LinearSolver, FlexibleGmresTakesAPreconditionerThatChanges) {
   EXPECT_LT(true_residual(true), 1e-9);
   EXPECT_GT(true_residual(false), 1e-3);  // the fixed-M update is wrong for a varying M
 }
+
+// The two-level cycle, rebuilt here from its public pieces: ILU smoothing, the residual summed
+// over each aggregate (two passes of pairwise matching), one ILU(0) step on the coarse level,
+// the correction copied back and scaled to minimise the residual, then the post-smoothing step:
+// the ILU again, or one block-Jacobi step x += D^-1 r. The multigrid's own cycle must give the
+// same x (to the single-precision products' rounding) for both; a post-smoothing step skipped,
+// applied to the wrong residual or with the ILU in place of Jacobi fails it (the two x differ by
+// far more than the tolerance, checked below).
+TEST(Multigrid, PostSmoothingStepIsTheIluOrOneBlockJacobiStep) {
+  const int nb = 5;
+  const Grid g = anisotropic_grid(16, nb, 1.0, 0.3, 0.05, 0.1, 7);
+  const int n = g.a.num_rows;
+  const std::size_t size = g.b.size();
+  BlockIlu0 fine_ilu;
+  fine_ilu.factorize(g.a, 1, 0);
+  int pairs = 0, count = 0;
+  AggregationMultigrid::Options options;
+  options.max_levels = 2;
+  options.coarsest_nodes = 10;
+  const std::vector<int> first = pairwise_aggregates(g.a, options.strong_fraction, pairs);
+  const BlockSparseMatrix paired = galerkin_coarse_matrix(g.a, first, pairs);
+  const std::vector<int> second = pairwise_aggregates(paired, options.strong_fraction, count);
+  const BlockSparseMatrix coarse = galerkin_coarse_matrix(paired, second, count);
+  BlockIlu0 coarse_ilu;
+  coarse_ilu.factorize(coarse, 1, 0);
+  SinglePrecisionMatrix product;
+  product.assign(g.a);
+  // pre-smoothing, residual, coarse correction and its scaling
+  std::vector<double> x, r(size), q(size), e(size), bc(static_cast<std::size_t>(nb) * count, 0.0),
+      xc;
+  fine_ilu.apply(g.b, x);
+  product.multiply(x, r);
+  for (std::size_t k = 0; k < size; ++k)
+    r[k] = g.b[k] - r[k];
+  for (int i = 0; i < n; ++i)
+    for (int v = 0; v < nb; ++v)
+      bc[static_cast<std::size_t>(nb) * second[first[i]] + v] +=
+          r[static_cast<std::size_t>(nb) * i + v];
+  coarse_ilu.apply(bc, xc);
+  for (int i = 0; i < n; ++i)
+    for (int v = 0; v < nb; ++v)
+      e[static_cast<std::size_t>(nb) * i + v] =
+          xc[static_cast<std::size_t>(nb) * second[first[i]] + v];
+  product.multiply(e, q);
+  double rq = 0.0, qq = 0.0;
+  for (std::size_t k = 0; k < size; ++k) {
+    rq += r[k] * q[k];
+    qq += q[k] * q[k];
+  }
+  const double alpha = rq / qq;
+  for (std::size_t k = 0; k < size; ++k) {
+    x[k] += alpha * e[k];
+    r[k] -= alpha * q[k];
+  }
+  // the two post-smoothing steps
+  std::vector<double> with_ilu = x, with_jacobi = x, step;
+  fine_ilu.apply(r, step);
+  for (std::size_t k = 0; k < size; ++k)
+    with_ilu[k] += step[k];
+  for (int i = 0; i < n; ++i) {
+    double inverse[nb * nb];
+    ASSERT_TRUE(invert_block(g.a.block(g.a.diag_pos[i]), inverse, nb));
+    for (int u = 0; u < nb; ++u)
+      for (int v = 0; v < nb; ++v)
+        with_jacobi[static_cast<std::size_t>(nb) * i + u] +=
+            inverse[u * nb + v] * r[static_cast<std::size_t>(nb) * i + v];
+  }
+  auto largest_difference = [](const std::vector<double>& a, const std::vector<double>& b) {
+    double diff = 0.0, scale = 0.0;
+    for (std::size_t k = 0; k < a.size(); ++k) {
+      diff = std::max(diff, std::abs(a[k] - b[k]));
+      scale = std::max(scale, std::abs(b[k]));
+    }
+    return diff / scale;
+  };
+  // the two variants are far apart, so the check below can tell them apart
+  ASSERT_GT(largest_difference(with_ilu, with_jacobi), 1e-2);
+  for (auto post :
+       {AggregationMultigrid::PostSmoother::ilu, AggregationMultigrid::PostSmoother::jacobi}) {
+    options.post_smoother = post;
+    AggregationMultigrid multigrid;
+    multigrid.setup(g.a, 1, 0, options);
+    ASSERT_EQ(multigrid.levels(), 2);
+    ASSERT_EQ(multigrid.level_nodes(1), count);
+    std::vector<double> cycle;
+    multigrid.apply(g.b, cycle);
+    const auto& expected = post == AggregationMultigrid::PostSmoother::ilu ? with_ilu : with_jacobi;
+    EXPECT_LT(largest_difference(cycle, expected), 1e-5)
+        << (post == AggregationMultigrid::PostSmoother::ilu ? "ilu" : "jacobi");
+  }
+}

@@ -192,6 +192,12 @@ int main(int argc, char** argv) {
             "pairwise aggregation, block ILU smoothing, one V(1,1)-cycle per GMRES iteration); "
             "1: the block ILU alone",
             tfmb::cli::range(1, 8));
+  table.add("--multigrid-post-smoother", o.multigrid_post_smoother, "",
+            "the multigrid's smoothing step after each coarse correction: ilu (the block ILU "
+            "again, the stronger one) or jacobi (block Jacobi: for operators on which an ILU "
+            "step does not reduce the residual and the cycle stalls GMRES, e.g. nasa-2dcd NPR "
+            "8.91 with SA)",
+            CLI::IsMember({"ilu", "jacobi"}));
   table.add("--coupling-switch-drop", o.settings.coupling_switch_drop, "1",
             "--turbulence-coupling auto: density residual drop from which the steps are "
             "coupled",

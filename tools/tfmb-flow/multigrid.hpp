@@ -3,8 +3,9 @@
 // based algebraic multigrid method", Electron. Trans. Numer. Anal. 37:123-146, sec. 3: two
 // passes of pairwise matching per level), the Galerkin coarse operator of piecewise-constant
 // prolongation (the blocks of each pair of aggregates summed), block ILU smoothing on every
-// level and one V(1,1)-cycle per application, its coarse corrections scaled to minimise the
-// residual (see cycle()); flexible GMRES (linear_solver.hpp) takes it as preconditioner.
+// level (after the coarse correction ILU or block Jacobi, Options::post_smoother) and one
+// V(1,1)-cycle per application, its coarse corrections scaled to minimise the residual (see
+// cycle()); flexible GMRES (linear_solver.hpp) takes it as preconditioner.
 #pragma once
 
 #include <vector>
@@ -30,6 +31,17 @@ BlockSparseMatrix galerkin_coarse_matrix(const BlockSparseMatrix& a,
 
 class AggregationMultigrid final : public Preconditioner {
  public:
+  // The smoothing step after each coarse correction (every level above the coarsest).
+  enum class PostSmoother {
+    // one more block ILU step, x += M^-1 r: the stronger smoother where that step contracts
+    // (the inviscid NPARC nozzle)
+    ilu,
+    // one block-Jacobi step, x += D^-1 r (D the level's diagonal blocks): a contraction where
+    // the ILU step is not (nasa-2dcd NPR 8.91 with SA: from CFL about 300 an ILU(1) step
+    // multiplies the residual by 1.1-2.7 and the V(1,1)-cycle stalls GMRES;
+    // tools/tfmb-flow/README.md)
+    jacobi,
+  };
   struct Options {
     int max_levels = 4;        // including the fine one
     int coarsest_nodes = 500;  // stop coarsening at or below this many nodes
@@ -37,6 +49,7 @@ class AggregationMultigrid final : public Preconditioner {
     // ILU(0) Richardson sweeps on the coarsest level: NPARC 0.75 (240 x 60 and 480 x 120, two
     // levels) took about as many GMRES iterations with 1 as with 4, in less time
     int coarsest_sweeps = 1;
+    PostSmoother post_smoother = PostSmoother::ilu;
   };
   // Builds the levels for `a` (kept by reference: it must outlive the preconditioner's use)
   // and factorises the smoothers: ILU(fill_level) on the fine level, ILU(0) below, each cut into
@@ -52,6 +65,7 @@ class AggregationMultigrid final : public Preconditioner {
     BlockSparseMatrix matrix;  // empty on the fine level (fine_ is used)
     BlockIlu0 smoother;
     SinglePrecisionMatrix product;         // the level's matrix, for the cycle's products
+    std::vector<float> diagonal_inverse;   // PostSmoother::jacobi: D^-1 by node, row-major blocks
     std::vector<int> aggregate;            // of each node, on the next coarser level
     std::vector<int> member_ptr, members;  // the nodes of each aggregate of the next level
     mutable std::vector<double> b, x, r, e, q;

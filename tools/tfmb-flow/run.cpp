@@ -222,6 +222,9 @@ class FlowStage {
                                        ? TurbulenceCoupling::automatic
                                        : TurbulenceCoupling::segregated;
     settings.limit_turbulence_alone = o.turbulence_step_limit == "nu-tilde";
+    settings.multigrid_post_smoother = o.multigrid_post_smoother == "jacobi"
+                                           ? AggregationMultigrid::PostSmoother::jacobi
+                                           : AggregationMultigrid::PostSmoother::ilu;
     if (sst_model && settings.turbulence_coupling != TurbulenceCoupling::segregated) {
       // a case's options may be written for SA; the same case run under SST keeps them
       log.info("--turbulence-coupling " + o.turbulence_coupling +

@@ -69,6 +69,7 @@ struct RunOptions {
   std::string matrix_free = "auto";                // false | true | auto (second order)
   std::string turbulence_jacobian = "exact";       // exact | m-matrix (SA's own linearisation)
   std::string roe_jacobian = "frozen";             // frozen | exact-first-order | exact
+  std::string multigrid_post_smoother = "ilu";  // ilu | jacobi (AggregationMultigrid::PostSmoother)
   bool exact_jacobian = false;                     // --exact-jacobian: --roe-jacobian exact
   // Time-accurate run (dual time stepping) when time.time_step > 0: from the restart (or the
   // initial) state, no steady solve; flow.h5 then holds the time averages.

@@ -1511,6 +1511,7 @@ void FlowSolver::factorize_preconditioner() {
   if (settings_.multigrid_levels > 1) {
     AggregationMultigrid::Options options;
     options.max_levels = settings_.multigrid_levels;
+    options.post_smoother = settings_.multigrid_post_smoother;
     multigrid_.setup(system_matrix(), settings_.ilu_partitions, settings_.ilu_fill_level, options);
   } else {
     ilu_.factorize(system_matrix(), settings_.ilu_partitions, settings_.ilu_fill_level);

@@ -140,6 +140,9 @@ struct SolverSettings {
   // Levels of the aggregation multigrid preconditioner (see AggregationMultigrid), the fine one
   // included; 1: the block ILU alone
   int multigrid_levels = 1;
+  // ... and its smoothing step after each coarse correction
+  AggregationMultigrid::PostSmoother multigrid_post_smoother =
+      AggregationMultigrid::PostSmoother::ilu;
   int gmres_max_iterations = 80;
   double max_relative_update = 0.5;  // largest relative change of rho or p per node and iteration
   // SA: largest change of nu_tilde per node and iteration relative to |nu_tilde| + nu (k-omega
