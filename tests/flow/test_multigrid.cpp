@@ -313,3 +313,51 @@ TEST(Multigrid, PostSmoothingStepIsTheIluOrOneBlockJacobiStep) {
         << (post == AggregationMultigrid::PostSmoother::ilu ? "ilu" : "jacobi");
   }
 }
+
+// A later setup of a matrix with the same pattern and the same aggregates keeps the coarse
+// patterns and sums the coarse blocks again: with the diagonal blocks shifted (the off-diagonal
+// strengths, and so the aggregates, unchanged) the cycle is that of a multigrid built afresh
+// for the shifted matrix
+// (to the single-precision products' rounding), and far from the first matrix's cycle; the
+// first matrix's coarse blocks kept would fail it. Another pattern rebuilds the levels.
+TEST(Multigrid, LaterSetupOfTheSamePatternSumsTheCoarseBlocksAgain) {
+  const int nb = 4;
+  const Grid g = anisotropic_grid(16, nb, 1.0, 0.3, 0.05, 0.1, 11);
+  Grid shifted = g;
+  for (int i = 0; i < shifted.a.num_rows; ++i)
+    for (int k = 0; k < nb; ++k)
+      shifted.a.block(shifted.a.diag_pos[i])[(nb + 1) * k] += 0.5;
+  AggregationMultigrid::Options options;
+  options.max_levels = 3;
+  options.coarsest_nodes = 10;
+  AggregationMultigrid reused, fresh;
+  std::vector<double> x_first, x_reused, x_fresh;
+  reused.setup(g.a, 1, 0, options);
+  reused.apply(g.b, x_first);
+  reused.setup(shifted.a, 1, 0, options);
+  reused.apply(g.b, x_reused);
+  fresh.setup(shifted.a, 1, 0, options);
+  fresh.apply(g.b, x_fresh);
+  ASSERT_EQ(reused.levels(), fresh.levels());
+  ASSERT_EQ(reused.levels(), 3);
+  double diff_fresh = 0.0, diff_first = 0.0, scale = 0.0;
+  for (std::size_t k = 0; k < x_fresh.size(); ++k) {
+    diff_fresh = std::max(diff_fresh, std::abs(x_reused[k] - x_fresh[k]));
+    diff_first = std::max(diff_first, std::abs(x_reused[k] - x_first[k]));
+    scale = std::max(scale, std::abs(x_fresh[k]));
+  }
+  EXPECT_LT(diff_fresh / scale, 1e-6);
+  EXPECT_GT(diff_first / scale, 1e-2);  // the shift changes the cycle
+  // another pattern: the levels of that matrix
+  const Grid other = anisotropic_grid(12, nb, 1.0, 0.3, 0.05, 0.1, 12);
+  reused.setup(other.a, 1, 0, options);
+  AggregationMultigrid other_fresh;
+  other_fresh.setup(other.a, 1, 0, options);
+  ASSERT_EQ(reused.levels(), other_fresh.levels());
+  for (int l = 0; l < reused.levels(); ++l)
+    EXPECT_EQ(reused.level_nodes(l), other_fresh.level_nodes(l));
+  std::vector<double> y_reused, y_fresh;
+  reused.apply(other.b, y_reused);
+  other_fresh.apply(other.b, y_fresh);
+  EXPECT_EQ(y_reused, y_fresh);
+}

@@ -210,34 +210,27 @@ int AggregationMultigrid::level_nodes(int level) const {
 
 void AggregationMultigrid::setup(const BlockSparseMatrix& a, int partitions, int fill_level,
                                  const Options& options) {
+  // the levels below are kept only for the same fine pattern and coarsening options
+  if (levels_.empty() || options.max_levels != options_.max_levels ||
+      options.coarsest_nodes != options_.coarsest_nodes ||
+      options.strong_fraction != options_.strong_fraction || a.block_size != fine_block_size_ ||
+      a.row_ptr != fine_row_ptr_ || a.col != fine_col_) {
+    levels_.clear();
+    levels_.emplace_back();
+    fine_block_size_ = a.block_size;
+    fine_row_ptr_ = a.row_ptr;
+    fine_col_ = a.col;
+  }
   options_ = options;
   fine_ = &a;
-  levels_.resize(1);
   levels_[0].smoother.factorize(a, partitions, fill_level);
-  while (static_cast<int>(levels_.size()) < options_.max_levels) {
-    const int l = static_cast<int>(levels_.size()) - 1;
-    const BlockSparseMatrix& fine = matrix(l);
-    if (fine.num_rows <= options_.coarsest_nodes)
+  for (int l = 0; l + 1 < options_.max_levels; ++l) {
+    if (!coarsen(l)) {
+      levels_.resize(l + 1);
       break;
-    // two passes of pairwise matching: aggregates of about four nodes
-    int pairs = 0;
-    const std::vector<int> first = pairwise_aggregates(fine, options_.strong_fraction, pairs);
-    const BlockSparseMatrix paired = galerkin_coarse_matrix(fine, first, pairs);
-    int count = 0;
-    const std::vector<int> second = pairwise_aggregates(paired, options_.strong_fraction, count);
-    if (count * 3 > fine.num_rows * 2)  // coarsening stalled (under 1.5 nodes per aggregate)
-      break;
-    Level& level = levels_[l];
-    level.aggregate.resize(fine.num_rows);
-    for (int i = 0; i < fine.num_rows; ++i)
-      level.aggregate[i] = second[first[i]];
-    aggregate_members(level.aggregate, count, level.member_ptr, level.members);
-    Level coarse;
-    // the pairs' matrix summed again over the second matching: the same sums as over the
-    // fine matrix, from half as many blocks
-    coarse.matrix = galerkin_coarse_matrix(paired, second, count);
-    coarse.smoother.factorize(coarse.matrix, partitions, 0);
-    levels_.push_back(std::move(coarse));
+    }
+    sum_coarse_blocks(l);
+    levels_[l + 1].smoother.factorize(levels_[l + 1].matrix, partitions, 0);
   }
   // after the last push_back: a copy keeps its matrix by reference
   for (int l = 0; l < levels(); ++l) {
@@ -245,6 +238,66 @@ void AggregationMultigrid::setup(const BlockSparseMatrix& a, int partitions, int
     // the coarsest level has no coarse correction to smooth after
     if (options_.post_smoother == PostSmoother::jacobi && l + 1 < levels())
       invert_diagonal_blocks(matrix(l), levels_[l].diagonal_inverse);
+  }
+}
+
+// Level l's aggregates (two passes of pairwise matching: about four nodes each) and, where they
+// differ from the last setup's, level l + 1's pattern and the map of level l's blocks into it
+// (every level below rebuilt too); false where coarsening stops. A setup whose aggregates are
+// the last ones (the common case once the flow has settled) keeps the coarse patterns and their
+// storage, and only sums the coarse blocks again.
+bool AggregationMultigrid::coarsen(int l) {
+  const BlockSparseMatrix& fine = matrix(l);
+  if (fine.num_rows <= options_.coarsest_nodes)
+    return false;
+  int pairs = 0;
+  const std::vector<int> first = pairwise_aggregates(fine, options_.strong_fraction, pairs);
+  const BlockSparseMatrix paired = galerkin_coarse_matrix(fine, first, pairs);
+  int count = 0;
+  const std::vector<int> second = pairwise_aggregates(paired, options_.strong_fraction, count);
+  if (count * 3 > fine.num_rows * 2)  // coarsening stalled (under 1.5 nodes per aggregate)
+    return false;
+  std::vector<int> aggregate(fine.num_rows);
+  for (int i = 0; i < fine.num_rows; ++i)
+    aggregate[i] = second[first[i]];
+  if (l + 1 < levels() && levels_[l + 1].matrix.num_rows == count &&
+      levels_[l].aggregate == aggregate)
+    return true;
+  Level coarse;
+  coarse.matrix = galerkin_coarse_matrix(paired, second, count);  // its values summed again
+  Level& level = levels_[l];
+  level.aggregate = std::move(aggregate);
+  aggregate_members(level.aggregate, count, level.member_ptr, level.members);
+  level.coarse_block.resize(fine.col.size());
+  for (int i = 0; i < fine.num_rows; ++i) {
+    for (int p = fine.row_ptr[i]; p < fine.row_ptr[i + 1]; ++p)
+      level.coarse_block[p] = coarse.matrix.find(level.aggregate[i], level.aggregate[fine.col[p]]);
+  }
+  levels_.resize(l + 1);
+  levels_.push_back(std::move(coarse));
+  return true;
+}
+
+// Level l + 1's matrix from level l's: each coarse block the sum of its fine blocks (the Galerkin
+// product of piecewise-constant prolongation), a coarse row at a time from its aggregate's
+// members in node order: the same sums whatever the number of threads.
+void AggregationMultigrid::sum_coarse_blocks(int l) {
+  const BlockSparseMatrix& fine = matrix(l);
+  const Level& level = levels_[l];
+  BlockSparseMatrix& coarse = levels_[l + 1].matrix;
+  const int be = fine.block_entries();
+#pragma omp parallel for schedule(static) if (coarse.num_rows > kThreadedNodes)
+  for (int c = 0; c < coarse.num_rows; ++c) {
+    std::fill(coarse.block(coarse.row_ptr[c]), coarse.block(coarse.row_ptr[c + 1]), 0.0);
+    for (int m = level.member_ptr[c]; m < level.member_ptr[c + 1]; ++m) {
+      const int i = level.members[m];
+      for (int p = fine.row_ptr[i]; p < fine.row_ptr[i + 1]; ++p) {
+        const double* from = fine.block(p);
+        double* to = coarse.block(level.coarse_block[p]);
+        for (int k = 0; k < be; ++k)
+          to[k] += from[k];
+      }
+    }
   }
 }
 

@@ -53,7 +53,9 @@ class AggregationMultigrid final : public Preconditioner {
   };
   // Builds the levels for `a` (kept by reference: it must outlive the preconditioner's use)
   // and factorises the smoothers: ILU(fill_level) on the fine level, ILU(0) below, each cut into
-  // `partitions` row ranges (see BlockIlu0).
+  // `partitions` row ranges (see BlockIlu0). The aggregates are found again at every setup; where
+  // they are the last setup's (a matrix of the same pattern), the coarse patterns and their
+  // storage are kept and only the coarse blocks summed again.
   void setup(const BlockSparseMatrix& a, int partitions, int fill_level, const Options& options);
   void apply(const std::vector<double>& b, std::vector<double>& x) const override;
   bool flexible() const override { return true; }  // the coarse corrections' scaling
@@ -68,12 +70,18 @@ class AggregationMultigrid final : public Preconditioner {
     std::vector<float> diagonal_inverse;   // PostSmoother::jacobi: D^-1 by node, row-major blocks
     std::vector<int> aggregate;            // of each node, on the next coarser level
     std::vector<int> member_ptr, members;  // the nodes of each aggregate of the next level
+    std::vector<int> coarse_block;  // of each block of this level's matrix, in the next one's
     mutable std::vector<double> b, x, r, e, q;
   };
   const BlockSparseMatrix& matrix(int level) const;
+  bool coarsen(int level);
+  void sum_coarse_blocks(int level);
   void cycle(int level, const std::vector<double>& b, std::vector<double>& x) const;
   const BlockSparseMatrix* fine_ = nullptr;
   std::vector<Level> levels_;
+  // the fine pattern the coarse levels were built for (setup() rebuilds them for another one)
+  int fine_block_size_ = 0;
+  std::vector<int> fine_row_ptr_, fine_col_;
   Options options_;
 };
 
