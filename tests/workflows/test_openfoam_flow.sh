@@ -42,6 +42,27 @@ rc=0; "$adapter" "$run/flowmesh.h5" $args --p0 1e5 -o "$run/x.h5" 2> "$run/p0.tx
 [ $rc -eq 2 ] && grep -q "differs from the model" "$run/p0.txt" || { echo "wrong --p0: expected exit 2, got $rc"; cat "$run/p0.txt"; exit 1; }
 [ ! -e "$run/x.h5" ] || { echo "a refused run left x.h5"; exit 1; }
 
+# A sample file the solver has created but not yet filled (empty, or a row cut short) is a
+# ValueError, which the monitor reads as "not written yet"; a whole file gives x and p.
+/usr/bin/python3 - "$src/workflows/adapters" "$run" <<'PY'
+import sys
+sys.path.insert(0, sys.argv[1])
+from openfoam import read_raw
+run = sys.argv[2]
+for name, body in (("empty", "# x y z p\n"), ("cut", "# x y z p\n1 0 0 5e4\n2 0")):
+    with open(f"{run}/{name}.raw", "w") as f:
+        f.write(body)
+    try:
+        read_raw(f"{run}/{name}.raw")
+        sys.exit(f"read_raw took the {name} sample file")
+    except ValueError:
+        pass
+with open(f"{run}/whole.raw", "w") as f:
+    f.write("# x y z p\n1 0 0 5e4\n2 0 0 4e4\n")
+x, p = read_raw(f"{run}/whole.raw")
+assert list(x) == [1, 2] and list(p) == [5e4, 4e4], (x, p)
+PY
+
 # The OpenFOAM run: a shorter inflow ramp than the default (the criterion is the same).
 rc=0
 "$adapter" "$run/flowmesh.h5" $args --model sa --order 2 --threads 2 --bin "$bin" \

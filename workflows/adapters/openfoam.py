@@ -23,6 +23,7 @@ import signal
 import subprocess
 import sys
 import time
+import warnings
 
 import numpy as np
 
@@ -255,8 +256,14 @@ def set_patches(case, mesh, inner, upper):
 
 
 def read_raw(path):
-    """x and value of each face of a raw surface sample (columns x y z value), in file order."""
-    data = np.loadtxt(path, comments="#", ndmin=2)
+    """x and value of each face of a raw surface sample (columns x y z value), in file order.
+    ValueError where the file has no complete row: the solver creates a sample file before it
+    writes the rows, so the monitor can find it empty."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)    # loadtxt's "input contained no data"
+        data = np.loadtxt(path, comments="#", ndmin=2)
+    if data.shape[0] == 0 or data.shape[1] < 4:
+        raise ValueError(f"{path}: no complete 'x y z value' row")
     return data[:, 0], data[:, 3]
 
 
