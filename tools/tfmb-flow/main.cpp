@@ -256,7 +256,8 @@ int main(int argc, char** argv) {
   table.add("--gmres-max-iterations", o.settings.gmres_max_iterations, "1",
             "GMRES iteration limit per nonlinear iteration");
   table.add("--gmres-restart", o.settings.gmres_restart, "1",
-            "GMRES Krylov basis size before a restart", tfmb::cli::range(1, 500));
+            "GMRES Krylov basis size before a restart (0: none at first order, 20 at second)",
+            tfmb::cli::range(0, 500));
   table.add("--print-every", o.settings.print_every, "1",
             "residual line on stderr every N iterations (0: none; -q: none)");
 

@@ -1458,6 +1458,20 @@ bool FlowSolver::check_convergence(SolveLoop& s) {
   return false;
 }
 
+// The restart of an assembled solve (settings.gmres_restart, 0: by the order). At first order the
+// matrix is the residual's own Jacobian, so the step is Newton's once the CFL number is high, and
+// GMRES keeps its whole basis, as the Newton-Krylov steps do: restarted at 20, NPARC 0.75 480 x
+// 120's first-order stage ran into the 80-iteration limit twice at CFL 3.9e3, short of its
+// tolerance (578 GMRES iterations in that stage against 413). A second-order defect-correction
+// step solves only the first-order approximation of its Jacobian and keeps GMRES(20): with the
+// whole basis there too, nasa-2dcd NPR 2.412 (segregated SA) lost its way in the second-order
+// stage (the CFL number collapsed at iteration 711, session 44).
+int FlowSolver::assembled_solve_restart() const {
+  if (settings_.gmres_restart > 0)
+    return settings_.gmres_restart;
+  return settings_.order == 1 ? settings_.gmres_max_iterations : 20;
+}
+
 // The implicit step's linear system: V/dt from the CFL number, the first-order Jacobian (with
 // the nu_tilde rows and cross blocks for a coupled step), the right-hand side -R with the strong
 // conditions of fixed nodes and walls, and its ILU factors; then the solve, by Newton-Krylov or
@@ -1497,7 +1511,7 @@ void FlowSolver::linear_step(SolveLoop& s) {
     s.lin = newton_krylov_solve(s);
   } else {
     s.lin = gmres(system_matrix(), preconditioner(), s.rhs, s.du, settings_.linear_tolerance,
-                  settings_.gmres_restart, settings_.gmres_max_iterations, gmres_workspace_);
+                  assembled_solve_restart(), settings_.gmres_max_iterations, gmres_workspace_);
   }
   s.rec.linear_iterations = s.lin.iterations;
   s.rec.linear_residual = s.lin.relative_residual;

@@ -131,7 +131,11 @@ struct SolverSettings {
   // floor) instead of the fixed tolerance
   bool eisenstat_walker = true;
   double eisenstat_walker_min = 1e-3;
-  int gmres_restart = 20;
+  // GMRES basis size before a restart in the assembled solves; 0: the whole basis up to
+  // gmres_max_iterations at first order (a first-order run and the first-order start), 20 in the
+  // second-order defect-correction steps (see linear_step). The Newton-Krylov steps always keep
+  // the whole basis.
+  int gmres_restart = 0;
   // ILU(0) partitions (independent row ranges, see BlockIlu0): 2 lets two threads share the
   // preconditioner; the same value gives the same result on any number of threads.
   int ilu_partitions = 2;
@@ -473,6 +477,7 @@ class FlowSolver {
   bool wall_stationary(SolveLoop& s);
   bool check_convergence(SolveLoop& s);  // true: converged
   void linear_step(SolveLoop& s);
+  int assembled_solve_restart() const;
   // the block ILU or, with multigrid_levels > 1, the aggregation multigrid of the system matrix
   void factorize_preconditioner();
   const Preconditioner& preconditioner() const;
