@@ -4,6 +4,7 @@
 // %, supersonic Mach 1 %, normal-shock position 2 % of the nozzle length.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <utility>
 #include <vector>
@@ -330,6 +331,85 @@ TEST(NparcNozzle, CflHeldAfterAShortLinearSolve) {
   }
   EXPECT_GE(short_solves, 3);
   EXPECT_GE(grown_after_converged_solve, 3);
+}
+
+// --gmres-restart 0 (the default): first-order solves keep the whole basis up to the iteration
+// limit, second-order defect-correction steps restart at 20. Tight linear solves make every step
+// run past 20 GMRES iterations, so the restart shows in each step's count; the runs that must
+// differ check that it does.
+std::vector<int> linear_iterations_per_step(int order, int gmres_restart) {
+  const Mesh mesh = nparc::make_mesh(61, 16);
+  SolverSettings s;
+  s.reference_state = {1.0, 300.0, 300.0, nparc::kP0};
+  s.max_iterations = 6;
+  s.order = order;
+  s.matrix_free = MatrixFree::off;
+  s.linear_tolerance = 1e-9;
+  s.gmres_max_iterations = 60;
+  s.gmres_restart = gmres_restart;
+  FlowSolver solver(mesh, Geometry::planar, kAir, nparc::boundary_conditions(0.75), s);
+  solver.set_uniform(low_speed_start());
+  std::vector<int> counts;
+  for (const IterationRecord& step : solver.solve().history)
+    counts.push_back(step.linear_iterations);
+  return counts;
+}
+
+TEST(NparcNozzle, FirstOrderSolvesKeepTheWholeBasisDefectCorrectionRestartsAt20) {
+  const std::vector<int> first_default = linear_iterations_per_step(1, 0);
+  EXPECT_EQ(first_default, linear_iterations_per_step(1, 60));
+  EXPECT_NE(first_default, linear_iterations_per_step(1, 20));
+  const std::vector<int> second_default = linear_iterations_per_step(2, 0);
+  EXPECT_EQ(second_default, linear_iterations_per_step(2, 20));
+  EXPECT_NE(second_default, linear_iterations_per_step(2, 60));
+  EXPECT_GT(*std::max_element(second_default.begin(), second_default.end()), 20);
+}
+
+// A step gone wrong, made by hand: after iteration 8's step the pressure of a band of nodes is
+// multiplied by 20 (on_iteration runs after the step). The next residual jumps, and the step is
+// taken back: the state before it, the CFL number cut tenfold. With the take-back switched off
+// (step_residual_jump 0) the spoiled state is kept, and the march has to work it off.
+SolveReport march_with_a_spoiled_step(double step_residual_jump) {
+  const Mesh mesh = nparc::make_mesh(61, 16);
+  SolverSettings s;
+  s.reference_state = {1.0, 300.0, 300.0, nparc::kP0};
+  s.max_iterations = 300;
+  s.order = 1;
+  s.step_residual_jump = step_residual_jump;
+  FlowSolver* solver_ptr = nullptr;
+  s.on_iteration = [&solver_ptr](int iteration) {
+    if (iteration != 8)
+      return;
+    std::vector<State> w = solver_ptr->primitive();
+    for (std::size_t i = w.size() / 3; i < w.size() / 2; ++i)
+      w[i][3] *= 20.0;
+    solver_ptr->set_primitive(w);
+  };
+  FlowSolver solver(mesh, Geometry::planar, kAir, nparc::boundary_conditions(0.75), s);
+  solver_ptr = &solver;
+  solver.set_uniform(low_speed_start());
+  return solver.solve();
+}
+
+TEST(NparcNozzle, StepAfterWhichTheResidualJumpsIsTakenBack) {
+  const SolveReport taken_back = march_with_a_spoiled_step(100.0);
+  const SolveReport kept = march_with_a_spoiled_step(0.0);
+  EXPECT_EQ(taken_back.steps_taken_back, 1);
+  EXPECT_EQ(kept.steps_taken_back, 0);
+  const auto record = [](const SolveReport& report, int iteration) {
+    const auto it = std::find_if(report.history.begin(), report.history.end(),
+                                 [&](const IterationRecord& r) { return r.iteration == iteration; });
+    return it == report.history.end() ? nullptr : &*it;
+  };
+  // iteration 9 found the jump and went back (no step, no record); iteration 10 stepped from
+  // iteration 8's state at a tenth of its CFL number (grown at most twofold since)
+  ASSERT_TRUE(record(taken_back, 8) && record(taken_back, 10));
+  EXPECT_EQ(record(taken_back, 9), nullptr);
+  EXPECT_LT(record(taken_back, 10)->cfl, 0.5 * record(taken_back, 8)->cfl);
+  EXPECT_TRUE(taken_back.converged);
+  // the spoiled state's residual is far above the one the step started from
+  ASSERT_TRUE(record(kept, 8) && record(kept, 9));
+  EXPECT_GT(record(kept, 9)->residual[0], 100.0 * record(kept, 8)->residual[0]);
 }
 
 // The march of NPARC 0.75's first-order start on the case's 240 x 60 mesh (iterations 13-28 of

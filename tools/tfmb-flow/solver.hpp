@@ -148,6 +148,10 @@ struct SolverSettings {
   AggregationMultigrid::PostSmoother multigrid_post_smoother =
       AggregationMultigrid::PostSmoother::ilu;
   int gmres_max_iterations = 80;
+  // A step after which the density residual norm is more than this factor above the one before
+  // it is taken back: the state before the step, the CFL number cut tenfold (0: never; see
+  // take_back_jumped_step)
+  double step_residual_jump = 100.0;
   double max_relative_update = 0.5;  // largest relative change of rho or p per node and iteration
   // SA: largest change of nu_tilde per node and iteration relative to |nu_tilde| + nu (k-omega
   // SST: of k relative to k + its free-stream value), so nu_tilde grows at most by the factor
@@ -264,7 +268,8 @@ struct SolveReport {
   double wall_force_change = 0.0;  // last iteration's relative change of the wall pressure force
   int iterations = 0;
   long linear_iterations = 0;
-  int backoffs = 0;      // CFL back-offs after non-physical states
+  int backoffs = 0;      // CFL back-offs after non-physical states (and taken-back steps)
+  int steps_taken_back = 0;  // steps whose residual jumped (take_back_jumped_step)
   int coupled_from = 0;  // automatic coupling: first coupled iteration (0: none)
   // inflow ramp: the iteration at which it reached the full pressure (0: no ramp, or not
   // reached), and the iterations it held (SolverSettings::inflow_ramp_hold_mach)
@@ -468,6 +473,7 @@ class FlowSolver {
   double largest_inflow_mach() const;
   void back_off_non_finite(SolveLoop& s);
   void release_held_limiter_if_far(const SolveLoop& s);
+  bool take_back_jumped_step(SolveLoop& s);  // true: went back to the state before the step
   bool track_residual(SolveLoop& s);  // true: went back to the best state
   void cut_cfl_ceiling_on_stall(SolveLoop& s);
   void freeze_limiter(SolveLoop& s);
