@@ -397,8 +397,9 @@ TEST(NparcNozzle, StepAfterWhichTheResidualJumpsIsTakenBack) {
   EXPECT_EQ(taken_back.steps_taken_back, 1);
   EXPECT_EQ(kept.steps_taken_back, 0);
   const auto record = [](const SolveReport& report, int iteration) {
-    const auto it = std::find_if(report.history.begin(), report.history.end(),
-                                 [&](const IterationRecord& r) { return r.iteration == iteration; });
+    const auto it =
+        std::find_if(report.history.begin(), report.history.end(),
+                     [&](const IterationRecord& r) { return r.iteration == iteration; });
     return it == report.history.end() ? nullptr : &*it;
   };
   // iteration 9 found the jump and went back (no step, no record); iteration 10 stepped from

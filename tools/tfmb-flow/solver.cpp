@@ -1249,13 +1249,14 @@ void FlowSolver::release_held_limiter_if_far(const SolveLoop& s) {
 // A step the residual jumped after is taken back at once: the state before it (relax_update's
 // u_good), the CFL number and its scale cut tenfold, counted as a back-off. Only the iteration
 // right after a step is compared, and only with the limiter (frozen or live) and the SA coupling
-// the step was taken with: a limiter let go or a coupling switched changes the residual itself. Node-by-node
-// relaxation keeps each node physical but not the field consistent: on Back-Massier-Gier 321 x
-// 81 a coupled Newton step at CFL 320 relaxed to nothing at the exit lip was taken, the density
-// residual rose from 2.9e4 to 5.9e7, and the march needed 450 iterations to come back (the CFL
-// number dipped below its start value for fewer than DivergedMarch's ten iterations, so the
-// return to the best state never came). Taken back, that run converged in 36 iterations. Not in
-// the inflow ramp, whose boundary values move under the residual, and not before a first step.
+// the step was taken with: a limiter let go or a coupling switched changes the residual itself.
+// Node-by-node relaxation keeps each node physical but not the field consistent: on
+// Back-Massier-Gier 321 x 81 a coupled Newton step at CFL 320 relaxed to nothing at the exit lip
+// was taken, the density residual rose from 2.9e4 to 5.9e7, and the march needed 450 iterations to
+// come back (the CFL number dipped below its start value for fewer than DivergedMarch's ten
+// iterations, so the return to the best state never came). Taken back, that run converged in 36
+// iterations. Not in the inflow ramp, whose boundary values move under the residual, and not before
+// a first step.
 bool FlowSolver::take_back_jumped_step(SolveLoop& s) {
   const double r = s.rnorm[0];
   const double before = s.stepped_from;

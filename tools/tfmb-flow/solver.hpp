@@ -268,7 +268,7 @@ struct SolveReport {
   double wall_force_change = 0.0;  // last iteration's relative change of the wall pressure force
   int iterations = 0;
   long linear_iterations = 0;
-  int backoffs = 0;      // CFL back-offs after non-physical states (and taken-back steps)
+  int backoffs = 0;          // CFL back-offs after non-physical states (and taken-back steps)
   int steps_taken_back = 0;  // steps whose residual jumped (take_back_jumped_step)
   int coupled_from = 0;  // automatic coupling: first coupled iteration (0: none)
   // inflow ramp: the iteration at which it reached the full pressure (0: no ramp, or not
