@@ -1243,9 +1243,6 @@ void FlowSolver::release_held_limiter_if_far(const SolveLoop& s) {
   }
 }
 
-// The density residual against the run's reference (its largest, or the one passed in) and its
-// best so far, whose state is kept; a march that has run away from that best goes back to it.
-// True when it did (the iteration ends there).
 // A step the residual jumped after is taken back at once: the state before it (relax_update's
 // u_good), the CFL number and its scale cut tenfold, counted as a back-off. Only the iteration
 // right after a step is compared, and only with the limiter (frozen or live) and the SA coupling
@@ -1280,6 +1277,9 @@ bool FlowSolver::take_back_jumped_step(SolveLoop& s) {
   return true;
 }
 
+// The density residual against the run's reference (its largest, or the one passed in) and its
+// best so far, whose state is kept; a march that has run away from that best goes back to it.
+// True when it did (the iteration ends there).
 bool FlowSolver::track_residual(SolveLoop& s) {
   const double r = s.rnorm[0];
   if (r > s.r_max)
