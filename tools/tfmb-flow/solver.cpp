@@ -1062,7 +1062,7 @@ SolveReport FlowSolver::solve() {
     compute_residual(!limiter_frozen_);
     s.rnorm = residual_norm();
     if (!std::isfinite(s.rnorm[0] + s.rnorm[1] + s.rnorm[2] + s.rnorm[3])) {
-      back_off_non_finite(s);
+      back_off_to_good_state(s);
       if (s.report.backoffs > 20)
         break;
       continue;
@@ -1219,8 +1219,9 @@ double FlowSolver::largest_inflow_mach() const {
   return mach;
 }
 
-// Non-physical residual: go back to the last good state with a smaller CFL.
-void FlowSolver::back_off_non_finite(SolveLoop& s) {
+// Back to the state before the last step with a tenth of the CFL number: after a non-finite
+// residual, or a step the residual jumped after (take_back_jumped_step).
+void FlowSolver::back_off_to_good_state(SolveLoop& s) {
   u_ = s.u_good;
   if (s.coupled)
     restore_turbulence(s.nu_good);
@@ -1262,18 +1263,13 @@ bool FlowSolver::take_back_jumped_step(SolveLoop& s) {
       limiter_frozen_ != s.stepped_limiter_frozen || s.coupled != s.stepped_coupled ||
       !(r > settings_.step_residual_jump * before))
     return false;
+  back_off_to_good_state(s);
+  ++s.report.steps_taken_back;
   if (settings_.print_every > 0)
     std::fprintf(stderr,
                  "iter %5d  residual up %.0f-fold in one step: back to the state before it, CFL "
                  "%.2e\n",
-                 s.it, r / before, std::max(1e-3, 0.1 * s.cfl));
-  u_ = s.u_good;
-  if (s.coupled && !s.nu_good.empty())
-    restore_turbulence(s.nu_good);
-  s.cfl = std::max(1e-3, 0.1 * s.cfl);
-  s.cfl_scale *= 0.1;
-  ++s.report.backoffs;
-  ++s.report.steps_taken_back;
+                 s.it, r / before, s.cfl);
   return true;
 }
 

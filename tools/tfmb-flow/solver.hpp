@@ -471,7 +471,7 @@ class FlowSolver {
   void switch_turbulence_coupling(SolveLoop& s);
   void ramp_inflow(SolveLoop& s);
   double largest_inflow_mach() const;
-  void back_off_non_finite(SolveLoop& s);
+  void back_off_to_good_state(SolveLoop& s);
   void release_held_limiter_if_far(const SolveLoop& s);
   bool take_back_jumped_step(SolveLoop& s);  // true: went back to the state before the step
   bool track_residual(SolveLoop& s);  // true: went back to the best state
