@@ -3,12 +3,15 @@
 // Shared by tests/loads, tests/matmap and tests/strain.
 #pragma once
 
+#include <unistd.h>
+
 #include <Eigen/Core>
 #include <cmath>
 #include <filesystem>
 #include <functional>
 #include <map>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "tfmb/common/h5.hpp"
@@ -18,8 +21,24 @@ namespace tfmb::testfiles {
 
 using Vec2 = Eigen::Vector2d;
 
+// This process's own folder under the system's temporary folder, removed when the process exits:
+// two test processes that run at once never share a file, and no run leaves files behind.
+inline const std::filesystem::path& process_temp_root() {
+  struct Root {
+    std::filesystem::path path = std::filesystem::temp_directory_path() /
+                                 ("tfmb-iface-" + std::to_string(::getpid()));
+    Root() { std::filesystem::create_directories(path); }
+    ~Root() {
+      std::error_code ignored;
+      std::filesystem::remove_all(path, ignored);
+    }
+  };
+  static const Root root;
+  return root.path;
+}
+
 inline std::filesystem::path temp_dir(const std::string& name) {
-  auto dir = std::filesystem::temp_directory_path() / ("tfmb-iface-" + name);
+  auto dir = process_temp_root() / name;
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

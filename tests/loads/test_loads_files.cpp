@@ -2,7 +2,6 @@
 // schemas, totals are printed, bad inputs exit 3 with a located message.
 #include <gtest/gtest.h>
 #include <hdf5.h>
-#include <unistd.h>
 
 #include <cstdlib>
 #include <fstream>
@@ -70,7 +69,7 @@ struct Files {
 };
 
 int run_cli(const std::string& arguments, std::string* stderr_text = nullptr) {
-  const std::string err = (std::filesystem::temp_directory_path() / ("tfmb-iface-loads-stderr-" + std::to_string(::getpid()) + ".txt")).string();
+  const std::string err = (tf::process_temp_root() / "loads-stderr.txt").string();
   const int status = std::system((std::string(TFMB_BIN_DIR) + "/tfmb-loads " + arguments + " 2>" + err + " >/dev/null").c_str());
   if (stderr_text) {
     std::ifstream in(err);

@@ -1,6 +1,5 @@
 // tfmb-matmap on the committed material database and on test thermal/model files: exact at
 // table points, linear between, clamped and refused cases, bad inputs exit 3.
-#include <unistd.h>
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -29,7 +28,7 @@ std::vector<std::string> problems(const std::filesystem::path& file, const std::
 }
 
 int run_cli(const std::string& arguments, std::string* stderr_text) {
-  const std::string err = (std::filesystem::temp_directory_path() / ("tfmb-iface-matmap-stderr-" + std::to_string(::getpid()) + ".txt")).string();
+  const std::string err = (tf::process_temp_root() / "matmap-stderr.txt").string();
   const int status = std::system((std::string(TFMB_BIN_DIR) + "/tfmb-matmap " + arguments + " 2>" + err + " >/dev/null").c_str());
   std::ifstream in(err);
   std::stringstream s;
