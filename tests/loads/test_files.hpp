@@ -25,8 +25,8 @@ using Vec2 = Eigen::Vector2d;
 // two test processes that run at once never share a file, and no run leaves files behind.
 inline const std::filesystem::path& process_temp_root() {
   struct Root {
-    std::filesystem::path path = std::filesystem::temp_directory_path() /
-                                 ("tfmb-iface-" + std::to_string(::getpid()));
+    std::filesystem::path path =
+        std::filesystem::temp_directory_path() / ("tfmb-iface-" + std::to_string(::getpid()));
     Root() { std::filesystem::create_directories(path); }
     ~Root() {
       std::error_code ignored;
