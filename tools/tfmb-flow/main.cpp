@@ -160,6 +160,11 @@ int main(int argc, char** argv) {
             "matrix-free steps: GMRES tolerance by Eisenstat-Walker forcing (tighter as the "
             "residual falls faster, down to 1e-3; --matrix-free-linear-tolerance the "
             "loosest) instead of the fixed tolerance");
+  table.add("--newton-cfl-follows-drop", o.settings.newton_cfl_follows_drop, "",
+            "second order, once the limiter is frozen and with every equation in the Newton "
+            "step (inviscid, laminar or coupled turbulence): the CFL ceiling and number rise by "
+            "the factor the density residual has fallen since then (pseudo-transient "
+            "continuation toward Newton's steps; false: the ceiling stays)");
   table.add("--limiter-rise-iterations", o.settings.limiter_rise_iterations, "1",
             "second order: also freeze the limiter when the density residual has risen in this "
             "many iterations in a row at the CFL ceiling (0: never)",

@@ -1417,8 +1417,19 @@ void FlowSolver::update_cfl(SolveLoop& s) {
                            r <= settings_.cfl_adaptive_residual_rise * s.r_previous;
       adaptive = healthy ? s.cfl * settings_.cfl_adaptive_growth : s.cfl * 0.7;
     }
+    // the Newton-Krylov phase after the limiter froze, every equation in its step: ceiling and
+    // SER from the phase's start, raised by its residual drop
+    // (SolverSettings::newton_cfl_follows_drop)
+    double ceiling = s.cfl_ceiling;
+    double ser_newton = 0.0;
+    if (settings_.newton_cfl_follows_drop && s.newton_from > 0 &&
+        (!settings_.turbulent || s.coupled) && r > 0.0 && r < s.newton_start_residual) {
+      const double drop = s.newton_start_residual / r;
+      ceiling = s.cfl_ceiling * drop;
+      ser_newton = s.newton_start_cfl * drop;
+    }
     const double grown =
-        std::min({std::max(ser, adaptive), s.cfl * settings_.cfl_growth, s.cfl_ceiling});
+        std::min({std::max({ser, adaptive, ser_newton}), s.cfl * settings_.cfl_growth, ceiling});
     // Not past a step the linear solver could not solve: after an assembled solve that stopped
     // above its tolerance the CFL number does not grow. The residual-based SER would raise it
     // again, and the next solves failed further (NPARC 0.75 480 x 120: GMRES at its 80-iteration

@@ -92,6 +92,17 @@ struct SolverSettings {
   // one, and on a jet into air at rest the Newton-like iteration can settle into a limit cycle
   // (residual oscillating at a constant level, updates taken whole) that no relaxation sees.
   int cfl_stall_iterations = 20;
+  // Once the limiter is frozen (MatrixFree::after_limiter_freeze), raise the CFL ceiling, and
+  // the SER value, by the factor the density residual has fallen since the Newton-Krylov phase
+  // began, so that the pseudo-time term vanishes as the residual does and the last steps are
+  // Newton's (pseudo-transient continuation, Kelley and Keyes 1998, SIAM J. Numer. Anal. 35:508:
+  // dt_n grows as 1 / |R_n|). The growth per iteration stays bounded by cfl_growth. The ceiling
+  // is there for the transient with a live limiter (cut by the stall rules above); NPARC 0.75
+  // 240 x 60 otherwise finished its Newton phase at CFL 5e3, 2-4 times its residual each step.
+  // Not with a segregated turbulence step: that step lags the mean flow's Newton step and needs
+  // its pseudo-time term (nasa-2dcd NPR 8.91, the case's settings: CFL 5e8 after 50 iterations,
+  // then GMRES at its 80-iteration limit and the residual creeping at 2-4).
+  bool newton_cfl_follows_drop = true;
   // Start-up: raise the total pressure of every stagnation inflow linearly from
   // inflow_ramp_start_pressure to its value over this many iterations (0: none), as a valve
   // opening would. A nozzle started from air at rest with the full pressure ratio at the inflow
