@@ -420,10 +420,11 @@ TEST(BackMassierGier, NewtonPhaseCflPassesTheCeilingOnlyWithCoupledTurbulence) {
       if (step.iteration >= r.report.newton_from)
         largest_after_freeze[k] = std::max(largest_after_freeze[k], step.cfl);
     }
-    std::printf("BMG 71 x 41, SA %s: limiter frozen at iteration %d, largest CFL after it %.2g, "
-                "drop %.1e after %d iterations\n",
-                k == 0 ? "segregated" : "coupled", r.report.newton_from, largest_after_freeze[k],
-                r.report.residual_drop, r.report.iterations);
+    std::printf(
+        "BMG 71 x 41, SA %s: limiter frozen at iteration %d, largest CFL after it %.2g, "
+        "drop %.1e after %d iterations\n",
+        k == 0 ? "segregated" : "coupled", r.report.newton_from, largest_after_freeze[k],
+        r.report.residual_drop, r.report.iterations);
   }
   EXPECT_LE(largest_after_freeze[0], ceiling);
   EXPECT_GT(largest_after_freeze[1], 10.0 * ceiling);
