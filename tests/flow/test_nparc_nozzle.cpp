@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -82,6 +83,55 @@ double shock_position(const std::vector<nparc::Column>& columns, const Quasi1dNo
   return -1.0;
 }
 
+// NPARC 0.75 on ni x nj nodes at first order from the low-speed start, to a drop of 1e-3 at the
+// CFL ceiling (the first-order start of a second-order run)
+struct FirstOrderStart {
+  Mesh mesh;
+  std::vector<BoundaryCondition> bcs;
+  SolverSettings settings;
+  SolveReport report;
+  std::vector<State> primitive;
+};
+
+FirstOrderStart first_order_start(int ni, int nj) {
+  FirstOrderStart f{nparc::make_mesh(ni, nj), nparc::boundary_conditions(0.75), {}, {}, {}};
+  SolverSettings& s = f.settings;
+  s.reference_state = {1.0, 300.0, 300.0, nparc::kP0};
+  s.max_iterations = 400;
+  s.order = 1;
+  s.residual_drop = 1e-3;
+  s.residual_drop_at_cfl_ceiling = true;
+  FlowSolver first(f.mesh, Geometry::planar, kAir, f.bcs, s);
+  first.set_uniform(low_speed_start());
+  f.report = first.solve();
+  f.primitive = first.primitive();
+  return f;
+}
+
+struct SecondOrderRun {
+  SolveReport report;
+  std::vector<State> w;
+};
+
+// The second-order stage from that state to 8 orders, the limiter frozen at a drop of 1e-3 (on
+// these meshes it settles without a stall), with `adjust` applied to its settings
+SecondOrderRun second_order_from(const FirstOrderStart& f,
+                                 const std::function<void(SolverSettings&)>& adjust) {
+  SolverSettings s = f.settings;
+  s.order = 2;
+  s.residual_drop = 1e-8;
+  s.residual_drop_at_cfl_ceiling = false;
+  s.residual_reference = f.report.residual_reference;
+  s.limiter_freeze_drop = 1e-3;
+  adjust(s);
+  FlowSolver solver(f.mesh, Geometry::planar, kAir, f.bcs, s);
+  solver.set_primitive(f.primitive);
+  SecondOrderRun r;
+  r.report = solver.solve();
+  r.w = solver.primitive();
+  return r;
+}
+
 }  // namespace
 
 TEST(NparcNozzle, SubsonicExitPressure089) {
@@ -134,40 +184,11 @@ TEST(NparcNozzle, SupersonicExitPressure016) {
 // steps must get there in fewer iterations than defect correction, which converges only linearly.
 TEST(NparcNozzle, NewtonStepsAfterTheLimiterFreezeReachTheDefectCorrectionSolutionSooner) {
   const int ni = 241, nj = 61;
-  const Mesh mesh = nparc::make_mesh(ni, nj);
-  const auto bcs = nparc::boundary_conditions(0.75);
-  SolverSettings s;
-  s.reference_state = {1.0, 300.0, 300.0, nparc::kP0};
-  s.max_iterations = 400;
-  s.order = 1;
-  s.residual_drop = 1e-3;
-  s.residual_drop_at_cfl_ceiling = true;
-  FlowSolver first(mesh, Geometry::planar, kAir, bcs, s);
-  first.set_uniform(low_speed_start());
-  const SolveReport start = first.solve();
-  ASSERT_TRUE(start.converged);
-  struct Second {
-    SolveReport report;
-    std::vector<State> w;
-  };
-  auto second_order = [&](MatrixFree steps) {
-    SolverSettings s2 = s;
-    s2.order = 2;
-    s2.residual_drop = 1e-8;
-    s2.residual_drop_at_cfl_ceiling = false;
-    s2.residual_reference = start.residual_reference;
-    s2.matrix_free = steps;
-    // on this mesh the limiter settles without a stall: freeze it by the residual drop instead
-    s2.limiter_freeze_drop = 1e-3;
-    FlowSolver solver(mesh, Geometry::planar, kAir, bcs, s2);
-    solver.set_primitive(first.primitive());
-    Second r;
-    r.report = solver.solve();
-    r.w = solver.primitive();
-    return r;
-  };
-  const Second newton = second_order(MatrixFree::after_limiter_freeze);
-  const Second defect = second_order(MatrixFree::off);
+  const FirstOrderStart start = first_order_start(ni, nj);
+  ASSERT_TRUE(start.report.converged);
+  const auto steps = [](MatrixFree m) { return [m](SolverSettings& s) { s.matrix_free = m; }; };
+  const SecondOrderRun newton = second_order_from(start, steps(MatrixFree::after_limiter_freeze));
+  const SecondOrderRun defect = second_order_from(start, steps(MatrixFree::off));
   ASSERT_TRUE(newton.report.converged);
   ASSERT_TRUE(defect.report.converged);
   ASSERT_GT(newton.report.newton_from, 0) << "the limiter never froze: no Newton-Krylov steps";
@@ -180,7 +201,8 @@ TEST(NparcNozzle, NewtonStepsAfterTheLimiterFreezeReachTheDefectCorrectionSoluti
       "NPARC 0.75 %d x %d: first order %d iterations; limiter frozen at second-order "
       "iteration %d; from there Newton-Krylov %d iterations, defect correction %d; largest "
       "pressure difference %.1e p0\n",
-      ni, nj, start.iterations, newton.report.newton_from, newton_steps, defect_steps, largest);
+      ni, nj, start.report.iterations, newton.report.newton_from, newton_steps, defect_steps,
+      largest);
   EXPECT_LT(largest, 1e-5);
   EXPECT_LT(2 * newton_steps, defect_steps);
 }
@@ -418,39 +440,14 @@ TEST(NparcNozzle, StepAfterWhichTheResidualJumpsIsTakenBack) {
 // CFL number passes the ceiling as the residual falls, by at most cfl_growth per iteration, and
 // the phase ends in fewer iterations; without it the ceiling holds. Both reach the same state.
 TEST(NparcNozzle, NewtonPhaseCflRisesWithTheResidualDropPastTheCeiling) {
-  const Mesh mesh = nparc::make_mesh(121, 31);
-  const auto bcs = nparc::boundary_conditions(0.75);
-  SolverSettings s;
-  s.reference_state = {1.0, 300.0, 300.0, nparc::kP0};
-  s.max_iterations = 400;
-  s.order = 1;
-  s.residual_drop = 1e-3;
-  s.residual_drop_at_cfl_ceiling = true;
-  FlowSolver first(mesh, Geometry::planar, kAir, bcs, s);
-  first.set_uniform(low_speed_start());
-  const SolveReport start = first.solve();
-  ASSERT_TRUE(start.converged);
-  struct Second {
-    SolveReport report;
-    std::vector<State> w;
+  const FirstOrderStart start = first_order_start(121, 31);
+  ASSERT_TRUE(start.report.converged);
+  const SolverSettings& s = start.settings;
+  const auto follows_drop = [](bool on) {
+    return [on](SolverSettings& settings) { settings.newton_cfl_follows_drop = on; };
   };
-  auto second_order = [&](bool follows_drop) {
-    SolverSettings s2 = s;
-    s2.order = 2;
-    s2.residual_drop = 1e-8;
-    s2.residual_drop_at_cfl_ceiling = false;
-    s2.residual_reference = start.residual_reference;
-    s2.limiter_freeze_drop = 1e-3;
-    s2.newton_cfl_follows_drop = follows_drop;
-    FlowSolver solver(mesh, Geometry::planar, kAir, bcs, s2);
-    solver.set_primitive(first.primitive());
-    Second r;
-    r.report = solver.solve();
-    r.w = solver.primitive();
-    return r;
-  };
-  const Second follows = second_order(true);
-  const Second held = second_order(false);
+  const SecondOrderRun follows = second_order_from(start, follows_drop(true));
+  const SecondOrderRun held = second_order_from(start, follows_drop(false));
   ASSERT_TRUE(follows.report.converged);
   ASSERT_TRUE(held.report.converged);
   ASSERT_GT(follows.report.newton_from, 0) << "the limiter never froze";
