@@ -392,12 +392,6 @@ TEST(BackMassierGier, ViscousCoarseRegression) {
   }
 }
 
-// Second order on a curved, kinked wall with a y+ 1 layer (71 x 41, SA), restarted from first
-// order: converges only with the wall-aligned reconstruction and the matrix-free second-order
-// Jacobian (tools/tfmb-flow/README.md, "Nozzle plume convergence"). Without them (Cartesian
-// stencil, first-order Jacobian) this run diverged at the tube/cone corner. Measured: 164
-// iterations (1,960 linear), 8 orders, 7 s on one thread (282 iterations, ~15 s with the
-// matrix-free GMRES solved to 0.02 instead of the default 0.4).
 // The Newton-Krylov phase's CFL number follows the residual's drop past the ceiling
 // (SolverSettings::newton_cfl_follows_drop) only when the turbulence equation is in the Newton
 // step: with the segregated SA step, which lags the mean flow's and needs its pseudo-time term,
@@ -430,6 +424,12 @@ TEST(BackMassierGier, NewtonPhaseCflPassesTheCeilingOnlyWithCoupledTurbulence) {
   EXPECT_GT(largest_after_freeze[1], 10.0 * ceiling);
 }
 
+// Second order on a curved, kinked wall with a y+ 1 layer (71 x 41, SA), restarted from first
+// order: converges only with the wall-aligned reconstruction and the matrix-free second-order
+// Jacobian (tools/tfmb-flow/README.md, "Nozzle plume convergence"). Without them (Cartesian
+// stencil, first-order Jacobian) this run diverged at the tube/cone corner. Measured: 164
+// iterations (1,960 linear), 8 orders, 7 s on one thread (282 iterations, ~15 s with the
+// matrix-free GMRES solved to 0.02 instead of the default 0.4).
 TEST(BackMassierGier, ViscousSecondOrderConverges) {
   const auto reference = read_reference();
   if (reference.empty())
