@@ -132,6 +132,14 @@ SecondOrderRun second_order_from(const FirstOrderStart& f,
   return r;
 }
 
+// The largest difference of the two runs' pressures, relative to p0
+double largest_pressure_difference(const SecondOrderRun& a, const SecondOrderRun& b) {
+  double largest = 0.0;
+  for (std::size_t i = 0; i < a.w.size(); ++i)
+    largest = std::max(largest, std::abs(a.w[i][3] - b.w[i][3]) / nparc::kP0);
+  return largest;
+}
+
 }  // namespace
 
 TEST(NparcNozzle, SubsonicExitPressure089) {
@@ -192,9 +200,7 @@ TEST(NparcNozzle, NewtonStepsAfterTheLimiterFreezeReachTheDefectCorrectionSoluti
   ASSERT_TRUE(newton.report.converged);
   ASSERT_TRUE(defect.report.converged);
   ASSERT_GT(newton.report.newton_from, 0) << "the limiter never froze: no Newton-Krylov steps";
-  double largest = 0.0;
-  for (std::size_t i = 0; i < newton.w.size(); ++i)
-    largest = std::max(largest, std::abs(newton.w[i][3] - defect.w[i][3]) / nparc::kP0);
+  const double largest = largest_pressure_difference(newton, defect);
   const int newton_steps = newton.report.iterations - newton.report.newton_from + 1;
   const int defect_steps = defect.report.iterations - newton.report.newton_from + 1;
   std::printf(
@@ -465,9 +471,7 @@ TEST(NparcNozzle, NewtonPhaseCflRisesWithTheResidualDropPastTheCeiling) {
   }
   for (const IterationRecord& r : held.report.history)
     largest_cfl_held = std::max(largest_cfl_held, r.cfl);
-  double largest = 0.0;
-  for (std::size_t i = 0; i < follows.w.size(); ++i)
-    largest = std::max(largest, std::abs(follows.w[i][3] - held.w[i][3]) / nparc::kP0);
+  const double largest = largest_pressure_difference(follows, held);
   const int newton_follows = follows.report.iterations - follows.report.newton_from + 1;
   const int newton_held = held.report.iterations - held.report.newton_from + 1;
   std::printf(
