@@ -1082,7 +1082,7 @@ SolveReport FlowSolver::solve() {
       break;
     linear_step(s);
     relax_update(s);
-    if (settings_.turbulent && !s.coupled)  // segregated, after the mean flow
+    if (segregated_turbulence_step(s))
       s.rec.turbulence_residual = sst() ? sst_step(s.cfl) : turbulence_step(s.cfl);
     accept_or_reject_step(s);
     s.stepped_from = s.rnorm[0];
@@ -1151,6 +1151,10 @@ bool FlowSolver::newton_krylov_step(const SolveLoop& s) const {
   return settings_.order >= 2 && (settings_.matrix_free == MatrixFree::on ||
                                   (settings_.matrix_free == MatrixFree::after_limiter_freeze &&
                                    limiter_frozen_ && s.newton_fallbacks < kNewtonFallbacks));
+}
+
+bool FlowSolver::segregated_turbulence_step(const SolveLoop& s) const {
+  return settings_.turbulent && !s.coupled;
 }
 
 // Automatic SA coupling: segregated steps through the start-up transient, coupled Newton steps
@@ -1422,8 +1426,8 @@ void FlowSolver::update_cfl(SolveLoop& s) {
     // (SolverSettings::newton_cfl_follows_drop)
     double ceiling = s.cfl_ceiling;
     double ser_newton = 0.0;
-    if (settings_.newton_cfl_follows_drop && s.newton_from > 0 &&
-        (!settings_.turbulent || s.coupled) && r > 0.0 && r < s.newton_start_residual) {
+    if (settings_.newton_cfl_follows_drop && s.newton_from > 0 && !segregated_turbulence_step(s) &&
+        r > 0.0 && r < s.newton_start_residual) {
       const double drop = s.newton_start_residual / r;
       ceiling = s.cfl_ceiling * drop;
       ser_newton = s.newton_start_cfl * drop;

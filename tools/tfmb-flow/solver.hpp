@@ -479,6 +479,8 @@ class FlowSolver {
   struct SolveLoop;
   void start_run(SolveLoop& s);
   bool newton_krylov_step(const SolveLoop& s) const;  // this step's kind
+  // the turbulence equation has its own step after the mean flow's (not in the Newton system)
+  bool segregated_turbulence_step(const SolveLoop& s) const;
   void switch_turbulence_coupling(SolveLoop& s);
   void ramp_inflow(SolveLoop& s);
   double largest_inflow_mach() const;
