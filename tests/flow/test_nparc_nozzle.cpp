@@ -441,6 +441,58 @@ TEST(NparcNozzle, StepAfterWhichTheResidualJumpsIsTakenBack) {
   EXPECT_GT(record(kept, 9)->residual[0], 100.0 * record(kept, 8)->residual[0]);
 }
 
+// A milder spoil than the one above, below the take-back's hundredfold jump: after iteration 8's
+// step the pressure of the same band is raised by half. With the line search the next
+// iteration halves the step (the spoil with it) until the pseudo-time residual is back below
+// the residual the step came from, and cuts the CFL number by the fraction kept; without it the
+// spoiled state is stepped from.
+SolveReport march_with_a_mildly_spoiled_step(int line_search_halvings) {
+  const Mesh mesh = nparc::make_mesh(61, 16);
+  SolverSettings s;
+  s.reference_state = {1.0, 300.0, 300.0, nparc::kP0};
+  s.max_iterations = 300;
+  s.order = 1;
+  s.line_search_halvings = line_search_halvings;
+  FlowSolver* solver_ptr = nullptr;
+  s.on_iteration = [&solver_ptr](int iteration) {
+    if (iteration != 8)
+      return;
+    std::vector<State> w = solver_ptr->primitive();
+    for (std::size_t i = w.size() / 3; i < w.size() / 2; ++i)
+      w[i][3] *= 1.5;
+    solver_ptr->set_primitive(w);
+  };
+  FlowSolver solver(mesh, Geometry::planar, kAir, nparc::boundary_conditions(0.75), s);
+  solver_ptr = &solver;
+  solver.set_uniform(low_speed_start());
+  return solver.solve();
+}
+
+TEST(NparcNozzle, LineSearchHalvesAStepAfterWhichThePseudoTimeResidualRose) {
+  const SolveReport searched = march_with_a_mildly_spoiled_step(4);
+  const SolveReport kept = march_with_a_mildly_spoiled_step(0);
+  const auto record = [](const SolveReport& report, int iteration) {
+    const auto it =
+        std::find_if(report.history.begin(), report.history.end(),
+                     [&](const IterationRecord& r) { return r.iteration == iteration; });
+    return it == report.history.end() ? nullptr : &*it;
+  };
+  ASSERT_TRUE(record(searched, 9) && record(kept, 9));
+  EXPECT_EQ(kept.steps_shortened, 0);
+  EXPECT_EQ(kept.steps_taken_back, 0);
+  EXPECT_EQ(searched.steps_taken_back, 0);
+  EXPECT_GE(searched.steps_shortened, 1);
+  EXPECT_GE(searched.step_halvings, 1);
+  EXPECT_LE(searched.step_halvings, 4 * searched.steps_shortened);
+  // the spoiled state's residual, and what is left of it after the halvings
+  EXPECT_GT(record(kept, 9)->residual[0], 2.0 * record(kept, 8)->residual[0]);
+  EXPECT_LT(record(searched, 9)->residual[0], 0.5 * record(kept, 9)->residual[0]);
+  // stepped from the shortened state at a cut CFL number (grown at most cfl_growth since)
+  EXPECT_LT(record(searched, 9)->cfl, record(kept, 9)->cfl);
+  EXPECT_TRUE(searched.converged);
+  EXPECT_TRUE(kept.converged);
+}
+
 // The Newton-Krylov phase after the limiter freeze, from the same first-order start, with the CFL
 // ceiling raised by the residual's drop since the freeze (the default) and without. With it the
 // CFL number passes the ceiling as the residual falls, by at most cfl_growth per iteration, and

@@ -173,6 +173,16 @@ int main(int argc, char** argv) {
             "second order: freeze the limiter when the density residual has not reached a "
             "new minimum for this many iterations (0: never; a chattering limiter)",
             CLI::NonNegativeNumber);
+  table.add("--line-search-halvings", o.settings.line_search_halvings, "1",
+            "halve a step after which the pseudo-time residual V/dt (u - u_before) + R(u) "
+            "(density) is above --line-search-rise times the residual it was taken from, at "
+            "most this many times (one residual evaluation each; the CFL number is cut by the "
+            "fraction kept; 0: never)",
+            tfmb::cli::range(0, 20));
+  table.add("--line-search-rise", o.settings.line_search_rise, "1",
+            "with --line-search-halvings: the largest accepted pseudo-time residual relative to "
+            "the residual before the step",
+            tfmb::cli::range(0.1, 100.0));
   table.add("--held-limiter-max-drop", o.settings.held_limiter_max_drop, "1",
             "with --restart-limiter frozen: release the held limiter when the restart "
             "state's density residual is above this fraction of the run's reference (a "

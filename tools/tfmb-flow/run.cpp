@@ -499,6 +499,9 @@ class FlowStage {
     second.residual_evaluations += first.residual_evaluations;
     second.residual_seconds += first.residual_seconds;
     second.backoffs += first.backoffs;
+    second.steps_taken_back += first.steps_taken_back;
+    second.steps_shortened += first.steps_shortened;
+    second.step_halvings += first.step_halvings;
     second.wall_time += first.wall_time;
     result.report = std::move(second);
   }

@@ -163,6 +163,11 @@ struct SolverSettings {
   // it is taken back: the state before the step, the CFL number cut tenfold (0: never; see
   // take_back_jumped_step)
   double step_residual_jump = 100.0;
+  // Line search on the pseudo-time residual (FlowSolver::shorten_rising_step): a step after
+  // which the density row of V/dt (u - u_before) + R(u) is more than line_search_rise times the
+  // residual it was taken from is halved, at most line_search_halvings times (0: never)
+  int line_search_halvings = 0;
+  double line_search_rise = 1.0;
   double max_relative_update = 0.5;  // largest relative change of rho or p per node and iteration
   // SA: largest change of nu_tilde per node and iteration relative to |nu_tilde| + nu (k-omega
   // SST: of k relative to k + its free-stream value), so nu_tilde grows at most by the factor
@@ -281,6 +286,8 @@ struct SolveReport {
   long linear_iterations = 0;
   int backoffs = 0;          // CFL back-offs after non-physical states (and taken-back steps)
   int steps_taken_back = 0;  // steps whose residual jumped (take_back_jumped_step)
+  int steps_shortened = 0;   // steps the line search halved (shorten_rising_step)
+  int step_halvings = 0;     // ... and the halvings in all
   int coupled_from = 0;  // automatic coupling: first coupled iteration (0: none)
   // inflow ramp: the iteration at which it reached the full pressure (0: no ramp, or not
   // reached), and the iterations it held (SolverSettings::inflow_ramp_hold_mach)
@@ -486,6 +493,8 @@ class FlowSolver {
   double largest_inflow_mach() const;
   void back_off_to_good_state(SolveLoop& s);
   void release_held_limiter_if_far(const SolveLoop& s);
+  double pseudo_time_residual_norm(const SolveLoop& s) const;
+  void shorten_rising_step(SolveLoop& s);
   bool take_back_jumped_step(SolveLoop& s);  // true: went back to the state before the step
   bool track_residual(SolveLoop& s);  // true: went back to the best state
   void cut_cfl_ceiling_on_stall(SolveLoop& s);
