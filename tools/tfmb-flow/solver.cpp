@@ -1256,8 +1256,7 @@ double FlowSolver::pseudo_time_residual_norm(const SolveLoop& s) const {
   for (int i = 0; i < s.n; ++i) {
     if (fixed_node_[i])
       continue;
-    const double g =
-        (s.diag_scale[i] * (u_[i][0] - s.u_good[i][0]) + res_[i][0]) / dual_.volume[i];
+    const double g = (s.diag_scale[i] * (u_[i][0] - s.u_good[i][0]) + res_[i][0]) / dual_.volume[i];
     sum += g * g;
   }
   return std::sqrt(sum / s.n);
@@ -1278,9 +1277,9 @@ double FlowSolver::pseudo_time_residual_norm(const SolveLoop& s) const {
 // is cut by the fraction of the step kept. Only right after a step, with the limiter and SA
 // coupling it was taken with, and not in the inflow ramp (as take_back_jumped_step).
 void FlowSolver::shorten_rising_step(SolveLoop& s) {
-  if (settings_.line_search_halvings <= 0 || s.it <= s.ramp_end ||
-      !std::isfinite(s.stepped_from) || limiter_frozen_ != s.stepped_limiter_frozen ||
-      s.coupled != s.stepped_coupled || s.u_good.size() != u_.size())
+  if (settings_.line_search_halvings <= 0 || s.it <= s.ramp_end || !std::isfinite(s.stepped_from) ||
+      limiter_frozen_ != s.stepped_limiter_frozen || s.coupled != s.stepped_coupled ||
+      s.u_good.size() != u_.size())
     return;
   const double allowed = settings_.line_search_rise * s.stepped_from;
   const double first = pseudo_time_residual_norm(s);
