@@ -174,10 +174,10 @@ int main(int argc, char** argv) {
             "new minimum for this many iterations (0: never; a chattering limiter)",
             CLI::NonNegativeNumber);
   table.add("--line-search-halvings", o.settings.line_search_halvings, "1",
-            "halve a step after which the pseudo-time residual V/dt (u - u_before) + R(u) "
-            "(density) is above --line-search-rise times the residual it was taken from, at "
-            "most this many times (one residual evaluation each; the CFL number is cut by the "
-            "fraction kept; 0: never)",
+            "halve a defect-correction or first-order step after which the pseudo-time "
+            "residual V/dt (u - u_before) + R(u) (density) is above --line-search-rise times "
+            "the residual it was taken from, at most this many times (one residual evaluation "
+            "each; the CFL number is cut by the fraction kept; 0: never)",
             tfmb::cli::range(0, 20));
   table.add("--line-search-rise", o.settings.line_search_rise, "1",
             "with --line-search-halvings: the largest accepted pseudo-time residual relative to "

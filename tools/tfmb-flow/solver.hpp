@@ -163,9 +163,10 @@ struct SolverSettings {
   // it is taken back: the state before the step, the CFL number cut tenfold (0: never; see
   // take_back_jumped_step)
   double step_residual_jump = 100.0;
-  // Line search on the pseudo-time residual (FlowSolver::shorten_rising_step): a step after
-  // which the density row of V/dt (u - u_before) + R(u) is more than line_search_rise times the
-  // residual it was taken from is halved, at most line_search_halvings times (0: never)
+  // Line search on the pseudo-time residual (FlowSolver::shorten_rising_step): a
+  // defect-correction or first-order step after which the density row of V/dt (u - u_before) +
+  // R(u) is more than line_search_rise times the residual it was taken from is halved, at most
+  // line_search_halvings times (0: never)
   int line_search_halvings = 0;
   double line_search_rise = 1.0;
   double max_relative_update = 0.5;  // largest relative change of rho or p per node and iteration
