@@ -394,23 +394,23 @@ TEST(NparcNozzle, FirstOrderSolvesKeepTheWholeBasisDefectCorrectionRestartsAt20)
 }
 
 // A step gone wrong, made by hand: after iteration 8's step the pressure of a band of nodes is
-// multiplied by 20 (on_iteration runs after the step). The next residual jumps, and the step is
-// taken back: the state before it, the CFL number cut tenfold. With the take-back switched off
-// (step_residual_jump 0) the spoiled state is kept, and the march has to work it off.
-SolveReport march_with_a_spoiled_step(double step_residual_jump) {
+// multiplied by `spoil` (on_iteration runs after the step); `adjust` sets the safeguard under
+// test. A first-order march of NPARC 0.75 on 61 x 16 from a low-speed start.
+SolveReport march_with_a_spoiled_step(double spoil,
+                                      const std::function<void(SolverSettings&)>& adjust) {
   const Mesh mesh = nparc::make_mesh(61, 16);
   SolverSettings s;
   s.reference_state = {1.0, 300.0, 300.0, nparc::kP0};
   s.max_iterations = 300;
   s.order = 1;
-  s.step_residual_jump = step_residual_jump;
+  adjust(s);
   FlowSolver* solver_ptr = nullptr;
-  s.on_iteration = [&solver_ptr](int iteration) {
+  s.on_iteration = [&solver_ptr, spoil](int iteration) {
     if (iteration != 8)
       return;
     std::vector<State> w = solver_ptr->primitive();
     for (std::size_t i = w.size() / 3; i < w.size() / 2; ++i)
-      w[i][3] *= 20.0;
+      w[i][3] *= spoil;
     solver_ptr->set_primitive(w);
   };
   FlowSolver solver(mesh, Geometry::planar, kAir, nparc::boundary_conditions(0.75), s);
@@ -419,65 +419,46 @@ SolveReport march_with_a_spoiled_step(double step_residual_jump) {
   return solver.solve();
 }
 
+// The history record of an iteration (null: the iteration took no step)
+const IterationRecord* record_of(const SolveReport& report, int iteration) {
+  const auto it = std::find_if(report.history.begin(), report.history.end(),
+                               [&](const IterationRecord& r) { return r.iteration == iteration; });
+  return it == report.history.end() ? nullptr : &*it;
+}
+
+// Pressure times 20: the next residual jumps, and the step is taken back: the state before it,
+// the CFL number cut tenfold. With the take-back switched off (step_residual_jump 0) the spoiled
+// state is kept, and the march has to work it off.
 TEST(NparcNozzle, StepAfterWhichTheResidualJumpsIsTakenBack) {
-  const SolveReport taken_back = march_with_a_spoiled_step(100.0);
-  const SolveReport kept = march_with_a_spoiled_step(0.0);
+  const auto jump = [](double factor) {
+    return [factor](SolverSettings& s) { s.step_residual_jump = factor; };
+  };
+  const SolveReport taken_back = march_with_a_spoiled_step(20.0, jump(100.0));
+  const SolveReport kept = march_with_a_spoiled_step(20.0, jump(0.0));
   EXPECT_EQ(taken_back.steps_taken_back, 1);
   EXPECT_EQ(kept.steps_taken_back, 0);
-  const auto record = [](const SolveReport& report, int iteration) {
-    const auto it =
-        std::find_if(report.history.begin(), report.history.end(),
-                     [&](const IterationRecord& r) { return r.iteration == iteration; });
-    return it == report.history.end() ? nullptr : &*it;
-  };
   // iteration 9 found the jump and went back (no step, no record); iteration 10 stepped from
   // iteration 8's state at a tenth of its CFL number (grown at most twofold since)
-  ASSERT_TRUE(record(taken_back, 8) && record(taken_back, 10));
-  EXPECT_EQ(record(taken_back, 9), nullptr);
-  EXPECT_LT(record(taken_back, 10)->cfl, 0.5 * record(taken_back, 8)->cfl);
+  ASSERT_TRUE(record_of(taken_back, 8) && record_of(taken_back, 10));
+  EXPECT_EQ(record_of(taken_back, 9), nullptr);
+  EXPECT_LT(record_of(taken_back, 10)->cfl, 0.5 * record_of(taken_back, 8)->cfl);
   EXPECT_TRUE(taken_back.converged);
   // the spoiled state's residual is far above the one the step started from
-  ASSERT_TRUE(record(kept, 8) && record(kept, 9));
-  EXPECT_GT(record(kept, 9)->residual[0], 100.0 * record(kept, 8)->residual[0]);
+  ASSERT_TRUE(record_of(kept, 8) && record_of(kept, 9));
+  EXPECT_GT(record_of(kept, 9)->residual[0], 100.0 * record_of(kept, 8)->residual[0]);
 }
 
-// A milder spoil than the one above, below the take-back's hundredfold jump: after iteration 8's
-// step the pressure of the same band is raised by half. With the line search the next
-// iteration halves the step (the spoil with it) until the pseudo-time residual is back below
-// the residual the step came from, and cuts the CFL number by the fraction kept; without it the
-// spoiled state is stepped from.
-SolveReport march_with_a_mildly_spoiled_step(int line_search_halvings) {
-  const Mesh mesh = nparc::make_mesh(61, 16);
-  SolverSettings s;
-  s.reference_state = {1.0, 300.0, 300.0, nparc::kP0};
-  s.max_iterations = 300;
-  s.order = 1;
-  s.line_search_halvings = line_search_halvings;
-  FlowSolver* solver_ptr = nullptr;
-  s.on_iteration = [&solver_ptr](int iteration) {
-    if (iteration != 8)
-      return;
-    std::vector<State> w = solver_ptr->primitive();
-    for (std::size_t i = w.size() / 3; i < w.size() / 2; ++i)
-      w[i][3] *= 1.5;
-    solver_ptr->set_primitive(w);
-  };
-  FlowSolver solver(mesh, Geometry::planar, kAir, nparc::boundary_conditions(0.75), s);
-  solver_ptr = &solver;
-  solver.set_uniform(low_speed_start());
-  return solver.solve();
-}
-
+// A milder spoil, pressure times 1.5, below the take-back's hundredfold jump. With the line
+// search the next iteration halves the step (the spoil with it) until the pseudo-time residual is
+// back below the residual the step came from, and cuts the CFL number by the fraction kept;
+// without it the spoiled state is stepped from.
 TEST(NparcNozzle, LineSearchHalvesAStepAfterWhichThePseudoTimeResidualRose) {
-  const SolveReport searched = march_with_a_mildly_spoiled_step(4);
-  const SolveReport kept = march_with_a_mildly_spoiled_step(0);
-  const auto record = [](const SolveReport& report, int iteration) {
-    const auto it =
-        std::find_if(report.history.begin(), report.history.end(),
-                     [&](const IterationRecord& r) { return r.iteration == iteration; });
-    return it == report.history.end() ? nullptr : &*it;
+  const auto halvings = [](int n) {
+    return [n](SolverSettings& s) { s.line_search_halvings = n; };
   };
-  ASSERT_TRUE(record(searched, 9) && record(kept, 9));
+  const SolveReport searched = march_with_a_spoiled_step(1.5, halvings(4));
+  const SolveReport kept = march_with_a_spoiled_step(1.5, halvings(0));
+  ASSERT_TRUE(record_of(searched, 9) && record_of(kept, 9));
   EXPECT_EQ(kept.steps_shortened, 0);
   EXPECT_EQ(kept.steps_taken_back, 0);
   EXPECT_EQ(searched.steps_taken_back, 0);
@@ -485,10 +466,10 @@ TEST(NparcNozzle, LineSearchHalvesAStepAfterWhichThePseudoTimeResidualRose) {
   EXPECT_GE(searched.step_halvings, 1);
   EXPECT_LE(searched.step_halvings, 4 * searched.steps_shortened);
   // the spoiled state's residual, and what is left of it after the halvings
-  EXPECT_GT(record(kept, 9)->residual[0], 2.0 * record(kept, 8)->residual[0]);
-  EXPECT_LT(record(searched, 9)->residual[0], 0.5 * record(kept, 9)->residual[0]);
+  EXPECT_GT(record_of(kept, 9)->residual[0], 2.0 * record_of(kept, 8)->residual[0]);
+  EXPECT_LT(record_of(searched, 9)->residual[0], 0.5 * record_of(kept, 9)->residual[0]);
   // stepped from the shortened state at a cut CFL number (grown at most cfl_growth since)
-  EXPECT_LT(record(searched, 9)->cfl, record(kept, 9)->cfl);
+  EXPECT_LT(record_of(searched, 9)->cfl, record_of(kept, 9)->cfl);
   EXPECT_TRUE(searched.converged);
   EXPECT_TRUE(kept.converged);
 }
