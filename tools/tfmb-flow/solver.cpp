@@ -1275,9 +1275,9 @@ double FlowSolver::pseudo_time_residual_norm(const SolveLoop& s) const {
 // residual evaluation per halving, no linear solve. Ceze and Fidkowski's constrained
 // pseudo-transient continuation accepts its steps by the same residual. A halved step stays
 // physical: density is linear and pressure concave in the conserved variables (segregated SA:
-// the mean flow's step only, nu_tilde keeps its own). The CFL number
-// is cut by the fraction of the step kept. Only right after a step, with the limiter and SA
-// coupling it was taken with, and not in the inflow ramp (as take_back_jumped_step). Not after
+// the mean flow's step only, nu_tilde keeps its own). The CFL number is cut by the fraction of
+// the step kept. Only right after a step, with the limiter and SA coupling it was taken with,
+// and not in the inflow ramp (as take_back_jumped_step). Not after
 // a Newton-Krylov step: there a rising residual is what gives up a Newton phase whose limiter
 // froze inside a transient (abandon_failed_newton_phase); halving those steps kept such a phase
 // of nasa-2dcd NPR 2.46 going for 30 iterations, and the run converged to that frozen limiter's
