@@ -1251,6 +1251,19 @@ void FlowSolver::release_held_limiter_if_far(const SolveLoop& s) {
   }
 }
 
+// This iteration's residual can be compared with the one the last step was taken from (`before`,
+// SolveLoop::stepped_from): it comes right after that step, with the limiter (frozen or live)
+// and the SA coupling the step was taken with (letting the limiter go or switching the coupling
+// changes the residual itself), and not in the inflow ramp, whose boundary values move under it.
+bool FlowSolver::right_after_comparable_step(const SolveLoop& s, double before) const {
+  return s.it > s.ramp_end && std::isfinite(before) &&
+         limiter_frozen_ == s.stepped_limiter_frozen && s.coupled == s.stepped_coupled;
+}
+
+bool FlowSolver::right_after_comparable_step(const SolveLoop& s) const {
+  return right_after_comparable_step(s, s.stepped_from);
+}
+
 // The density row of the pseudo-time residual of the step just taken, V/dt (u - u_before) +
 // R(u), per volume and as an RMS over the nodes, as residual_norm() measures R.
 double FlowSolver::pseudo_time_residual_norm(const SolveLoop& s) const {
@@ -1283,9 +1296,8 @@ double FlowSolver::pseudo_time_residual_norm(const SolveLoop& s) const {
 // of nasa-2dcd NPR 2.46 going for 30 iterations, and the run converged to that frozen limiter's
 // solution (separation x/l_e 0.487 against the live limiter's 0.500).
 void FlowSolver::shorten_rising_step(SolveLoop& s) {
-  if (settings_.line_search_halvings <= 0 || s.it <= s.ramp_end || !std::isfinite(s.stepped_from) ||
-      limiter_frozen_ != s.stepped_limiter_frozen || s.coupled != s.stepped_coupled ||
-      s.stepped_newton || s.u_good.size() != u_.size())
+  if (settings_.line_search_halvings <= 0 || !right_after_comparable_step(s) || s.stepped_newton ||
+      s.u_good.size() != u_.size())
     return;
   const double allowed = settings_.line_search_rise * s.stepped_from;
   const double first = pseudo_time_residual_norm(s);
@@ -1334,8 +1346,7 @@ bool FlowSolver::take_back_jumped_step(SolveLoop& s) {
   const double r = s.rnorm[0];
   const double before = s.stepped_from;
   s.stepped_from = std::numeric_limits<double>::infinity();
-  if (settings_.step_residual_jump <= 0.0 || s.it <= s.ramp_end || !std::isfinite(before) ||
-      limiter_frozen_ != s.stepped_limiter_frozen || s.coupled != s.stepped_coupled ||
+  if (settings_.step_residual_jump <= 0.0 || !right_after_comparable_step(s, before) ||
       !(r > settings_.step_residual_jump * before))
     return false;
   back_off_to_good_state(s);

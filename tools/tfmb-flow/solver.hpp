@@ -494,6 +494,8 @@ class FlowSolver {
   double largest_inflow_mach() const;
   void back_off_to_good_state(SolveLoop& s);
   void release_held_limiter_if_far(const SolveLoop& s);
+  bool right_after_comparable_step(const SolveLoop& s, double before) const;
+  bool right_after_comparable_step(const SolveLoop& s) const;
   double pseudo_time_residual_norm(const SolveLoop& s) const;
   void shorten_rising_step(SolveLoop& s);
   bool take_back_jumped_step(SolveLoop& s);  // true: went back to the state before the step
