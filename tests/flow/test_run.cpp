@@ -247,10 +247,30 @@ TEST(FlowRun, BadInputs) {
     EXPECT_EQ(f.attr_i64("/convergence", "converged"), 0);
     EXPECT_EQ(f.attr_string("/convergence", "stop_reason"), "iteration limit (2) reached");
     EXPECT_TRUE(f.has_attr("/convergence", "worst_residual_x"));
-    EXPECT_NE(log_text.str().find("not converged: iteration limit (2) reached; largest density "
-                                  "residual at ("),
+    const std::string text = log_text.str();
+    EXPECT_NE(
+        text.find("not converged: iteration limit (2) reached; largest density residual at ("),
+        std::string::npos)
+        << text;
+    // ... which equation is furthest from converged: the log's figures are the last row of the
+    // file's residual history, each equation against its largest
+    const auto history = f.read_matrix("/convergence/residual_history");
+    const std::string names[4] = {"density", "x-momentum", "y-momentum", "energy"};
+    const std::size_t drops = text.find("residuals against their largest: ");
+    ASSERT_NE(drops, std::string::npos) << text;
+    int furthest = 0;
+    for (int v = 0; v < 4; ++v) {
+      const std::size_t at = text.find(names[v] + " ", drops);
+      ASSERT_NE(at, std::string::npos) << names[v] << text;
+      const double logged = std::stod(text.substr(at + names[v].size() + 1));
+      const double last = history(history.rows() - 1, v);
+      EXPECT_NEAR(logged, last, 5e-3 * last) << names[v];
+      if (last > history(history.rows() - 1, furthest))
+        furthest = v;
+    }
+    EXPECT_NE(text.find("furthest from converged: " + names[furthest] + ", largest at ("),
               std::string::npos)
-        << log_text.str();
+        << text;
   }
   write_flowmesh(dir / "other.h5", nparc::make_mesh(22, 6));
   RunOptions other = o;

@@ -1,6 +1,7 @@
 #include "run.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 #include <numeric>
@@ -22,6 +23,41 @@
 namespace tfmb::flow {
 
 namespace {
+
+// For a run that did not converge: the last row of the residual history (each equation's
+// residual over its largest in this run, as /convergence/residual_history holds it, and the
+// turbulence equation's likewise), the equation furthest from converged and where its residual
+// per volume is largest. A run stopped with its density down 8 orders may still have a
+// turbulence equation or an energy residual that stalled.
+std::string equation_drops_text(const SolveReport& rep, bool turbulent, TurbulenceModel model) {
+  if (rep.history.empty())
+    return "no iteration";
+  const int equations = turbulent ? 5 : 4;
+  std::array<double, 5> largest{};
+  for (const IterationRecord& rec : rep.history) {
+    for (int v = 0; v < 4; ++v)
+      largest[v] = std::max(largest[v], rec.residual[v]);
+    largest[4] = std::max(largest[4], rec.turbulence_residual);
+  }
+  const IterationRecord& last = rep.history.back();
+  std::array<double, 5> drop{};
+  int furthest = 0;
+  for (int v = 0; v < equations; ++v) {
+    const double r = v < 4 ? last.residual[v] : last.turbulence_residual;
+    drop[v] = largest[v] > 0.0 ? r / largest[v] : 0.0;
+    if (drop[v] > drop[furthest])
+      furthest = v;
+  }
+  const char* names[5] = {"density", "x-momentum", "y-momentum", "energy",
+                          model == TurbulenceModel::sst ? "k" : "nu_tilde"};
+  std::string text = "residuals against their largest:";
+  for (int v = 0; v < equations; ++v)
+    text += std::string(v > 0 ? "," : "") + " " + names[v] + " " + text::format_number(drop[v], 3);
+  const Vec2& at = rep.largest_residual_at[furthest];
+  return text + "; furthest from converged: " + names[furthest] + ", largest at (" +
+         text::format_number(at.x) + ", " + text::format_number(at.y) + ") m" +
+         (furthest == 4 && model == TurbulenceModel::sst ? " (the density's largest)" : "");
+}
 
 struct LoadedMesh {
   Mesh mesh;
@@ -833,11 +869,14 @@ class FlowStage {
     if (!rep.converged && !rep.stop_reason.empty()) {
       log.warn("not converged: " + rep.stop_reason + "; largest density residual at (" +
                text::format_number(rep.worst_residual_at.x) + ", " +
-               text::format_number(rep.worst_residual_at.y) + ") m; last update relaxed to " +
-               text::format_number(rep.least_relaxation) + " at (" +
-               text::format_number(rep.least_relaxed_at.x) + ", " +
-               text::format_number(rep.least_relaxed_at.y) +
-               ") m; the last physical state is written");
+               text::format_number(rep.worst_residual_at.y) + ") m; " +
+               equation_drops_text(rep, settings.turbulent, settings.turbulence_model) + "; " +
+               (rep.least_relaxation < 1.0
+                    ? "last update relaxed to " + text::format_number(rep.least_relaxation) +
+                          " at (" + text::format_number(rep.least_relaxed_at.x) + ", " +
+                          text::format_number(rep.least_relaxed_at.y) + ") m"
+                    : std::string("last update not relaxed")) +
+               "; the last physical state is written");
     }
     // per unit depth (planar) or for the whole axisymmetric nozzle
     const bool whole = lm.geometry == Geometry::axisymmetric;

@@ -1864,11 +1864,29 @@ void FlowSolver::accept_or_reject_step(SolveLoop& s) {
 
 // The node with the largest density residual per volume: the first thing to look at when a
 // run stalls (progress line, report of a run that did not converge).
-int FlowSolver::worst_residual_node() const {
+int FlowSolver::worst_residual_node(int v) const {
   int worst = 0;
-  for (int i = 1; i < dual_.num_nodes; ++i) {
-    if (std::abs(res_[i][0]) / dual_.volume[i] > std::abs(res_[worst][0]) / dual_.volume[worst])
+  double largest = -1.0;
+  for (int i = 0; i < dual_.num_nodes; ++i) {
+    const bool wall = wall_node_bc_[i] >= 0;
+    double r = 0.0;
+    if (v == 4) {
+      if (wall)
+        continue;  // nu_tilde is imposed there (turbulence_residual_norm())
+      r = std::abs(sa_res_[i]);
+    } else {
+      // the rows residual_norm() counts: no fixed node, no wall's momentum, no isothermal
+      // wall's energy (imposed there)
+      if (fixed_node_[i] || (wall && v > 0 && v < 3) ||
+          (wall && v == 3 && bcs_[wall_node_bc_[i]].kind == BcKind::wall_isothermal))
+        continue;
+      r = std::abs(res_[i][v]);
+    }
+    r /= dual_.volume[i];
+    if (r > largest) {
+      largest = r;
       worst = i;
+    }
   }
   return worst;
 }
@@ -1927,6 +1945,11 @@ void FlowSolver::finish_run(SolveLoop& s) {
             ? "the CFL number collapsed below 1e-3 of its start value"
             : "iteration limit (" + std::to_string(settings_.max_iterations) + ") reached";
     report.worst_residual_at = dual_.coords[worst_residual_node()];
+    for (int v = 0; v < 5; ++v) {
+      const bool sa = v == 4 && settings_.turbulent && !sst();
+      report.largest_residual_at[v] =
+          v < 4 || sa ? dual_.coords[worst_residual_node(v)] : report.worst_residual_at;
+    }
   }
   report.wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - s.start).count();

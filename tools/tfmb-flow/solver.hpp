@@ -4,6 +4,7 @@
 // Jacobian solved by ILU(0)-preconditioned GMRES.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <string>
 #include <vector>
@@ -304,6 +305,10 @@ struct SolveReport {
   // largest at the end, and where the last update was relaxed most (and by how much).
   std::string stop_reason;
   Vec2 worst_residual_at{};
+  // ... and where each equation's residual per volume is largest (density, x and y momentum,
+  // energy, nu_tilde; for SST's k: where the density's is), for the log to say where the
+  // equation furthest from converged stands
+  std::array<Vec2, 5> largest_residual_at{};
   Vec2 least_relaxed_at{};
   double least_relaxation = 1.0;
   double residual_drop = 1.0;       // final density residual / reference density residual
@@ -520,7 +525,9 @@ class FlowSolver {
   void report_progress(SolveLoop& s);
   bool march_stopped(SolveLoop& s);  // true: the run gives up
   void finish_run(SolveLoop& s);
-  int worst_residual_node() const;  // largest density residual per volume
+  // the node whose residual per volume in equation v (0-3: the mean flow's, 4: nu_tilde) is
+  // largest, over the rows the residual norm counts
+  int worst_residual_node(int v = 0) const;
 
   Mesh mesh_;  // internal numbering
   std::vector<int> new_of_old_, old_of_new_;
