@@ -52,7 +52,8 @@ struct VortexRun {
   double inner_per_step = 0.0;  // inner iterations per physical step
 };
 
-VortexRun convect(int nodes, int steps, double end_time, double x_start) {
+VortexRun convect(int nodes, int steps, double end_time, double x_start, bool limiter = false,
+                  InnerLimiter inner_limiter = InnerLimiter::predicted) {
   StructuredMeshSpec spec;
   spec.ni = nodes;
   spec.nj = nodes;
@@ -66,7 +67,7 @@ VortexRun convect(int nodes, int steps, double end_time, double x_start) {
   far.freestream = {rho_inf(), u_inf(), 0.0, kPinf};
   SolverSettings s;
   s.order = 2;
-  s.limiter = false;  // smooth flow: the limiter would only blur the order
+  s.limiter = limiter;  // smooth flow: the limiter would only blur the order
   s.reference_state = {rho_inf(), 347.0, 347.0, kPinf};
   s.print_every = 0;
   FlowSolver solver(mesh, Geometry::planar, kAir, std::vector<BoundaryCondition>(4, far), s);
@@ -82,6 +83,7 @@ VortexRun convect(int nodes, int steps, double end_time, double x_start) {
   t.inner_residual_drop = 1e-9;
   t.reference_pressure = kPinf;
   t.cfl_start = 1e3;
+  t.inner_limiter = inner_limiter;
   const TimeAccurateResult r = run_time_accurate(solver, t, {});
   return {r.mean_primitive, mesh.points, r.unconverged_steps,
           static_cast<double>(r.iterations) / steps};
@@ -129,4 +131,36 @@ TEST(TimeAccurate, ConvectedVortexIsSecondOrderInTimeAndTravelsWithTheStream) {
   EXPECT_LT(order, 2.3);
   // the centroid of a vortex sampled at h = R/4 sits within a few hundredths of R
   EXPECT_NEAR(travel, u_inf() * end_time, 0.05 * kRadius);
+}
+
+// The same vortex with the limiter on (Venkatakrishnan's, active about the core's extrema): with
+// the limiter held per step at the state extrapolated to the new time level (the default), the
+// time discretisation stays second order and each step converges, in fewer inner iterations than
+// with the live limiter, whose converged steps are the fully implicit scheme. The held limiter's
+// lag is O(dt^2): its departure from the live scheme stays under a tenth of the coarse step's
+// time error (held at U^n instead, an O(dt) lag, it was 0.22 of it: 3.2e-5 against 1.4e-4).
+TEST(TimeAccurate, LimitedVortexStaysSecondOrderWithThePredictedLimiter) {
+  const int nodes = 41;
+  const double x_start = -1.5 * kRadius;
+  const double end_time = 2.0 * kRadius / u_inf();
+  const VortexRun coarse = convect(nodes, 24, end_time, x_start, true);
+  const VortexRun medium = convect(nodes, 48, end_time, x_start, true);
+  const VortexRun fine = convect(nodes, 96, end_time, x_start, true);
+  const VortexRun live = convect(nodes, 24, end_time, x_start, true, InnerLimiter::live);
+  EXPECT_EQ(coarse.unconverged_steps + medium.unconverged_steps + fine.unconverged_steps, 0);
+  const double e1 = density_difference(coarse, medium);
+  const double e2 = density_difference(medium, fine);
+  const double order = std::log2(e1 / e2);
+  const double schemes = density_difference(coarse, live);
+  std::printf(
+      "limited vortex, 41 x 41, BDF2, limiter held at the predicted state: density differences "
+      "dt/(dt/2) %.3e, (dt/2)/(dt/4) %.3e: order %.2f; inner iterations per step %.1f, %.1f, "
+      "%.1f; live limiter (24 steps): %.1f inner iterations per step, %d steps short of the "
+      "drop, density %.3e from the predicted one\n",
+      e1, e2, order, coarse.inner_per_step, medium.inner_per_step, fine.inner_per_step,
+      live.inner_per_step, live.unconverged_steps, schemes);
+  EXPECT_GT(order, 1.8);
+  EXPECT_LT(order, 2.3);
+  EXPECT_LT(coarse.inner_per_step, live.inner_per_step);
+  EXPECT_LT(schemes, 0.1 * e1);
 }

@@ -231,6 +231,15 @@ int main(int argc, char** argv) {
   table.add("--inner-residual-drop", o.time.inner_residual_drop, "1",
             "a physical step is converged when its density residual fell by this factor",
             CLI::PositiveNumber);
+  table.add("--inner-limiter", o.inner_limiter, "",
+            "time-accurate second order: predicted: the limiter evaluated once per physical "
+            "step at the state extrapolated to the new time level (2 U^n - U^(n-1)) and held "
+            "for the step's Newton-Krylov iterations; live: as in a steady solve, live until "
+            "the inner residual stalls",
+            CLI::IsMember({"predicted", "live"}));
+  table.add("--inner-linear-tolerance", o.time.inner_linear_tolerance, "1",
+            "time-accurate runs: GMRES tolerance of each inner Newton-Krylov step (fixed)",
+            CLI::PositiveNumber);
   table.add("--statistics-tolerance", o.time.statistics_tolerance, "1",
             "the time average counts as converged when the wall pressure means of the "
             "window's two halves differ by less than this, relative to p0",

@@ -737,6 +737,26 @@ void FlowSolver::begin_time_step(double dt) {
   time_a_ = first ? std::array<double, 3>{1.0, 1.0, 0.0} : std::array<double, 3>{1.5, 2.0, 0.5};
 }
 
+void FlowSolver::hold_limiter_at_predicted_state() {
+  hold_limiter(false);
+  limiter_stale_ = true;  // evaluated at U^n by the next solve() unless U* below is physical
+  if (time_u_nm1_.empty() || settings_.order < 2 || !settings_.limiter)
+    return;
+  std::vector<State> predicted(u_.size());
+  for (std::size_t i = 0; i < u_.size(); ++i) {
+    for (int v = 0; v < 4; ++v)
+      predicted[i][v] = 2.0 * time_u_n_[i][v] - time_u_nm1_[i][v];
+  }
+  apply_strong_conditions(predicted);
+  if (!physical(predicted))
+    return;
+  std::vector<State> start = std::move(u_);
+  u_ = std::move(predicted);
+  compute_residual(true);
+  u_ = std::move(start);
+  limiter_stale_ = false;  // the next solve() evaluates everything at U^n but the limiter
+}
+
 void FlowSolver::set_inner_iteration_control(int max_iterations, double residual_drop,
                                              double cfl_start, int print_every) {
   settings_.max_iterations = max_iterations;

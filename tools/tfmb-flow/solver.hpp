@@ -402,6 +402,19 @@ class FlowSolver {
   // progress lines; no stationarity criterion, no inflow ramp.
   void set_inner_iteration_control(int max_iterations, double residual_drop, double cfl_start,
                                    int print_every);
+  // The GMRES tolerance of every Newton-Krylov step from here on, fixed (no Eisenstat-Walker
+  // forcing): the inner steps of a physical time step.
+  void set_newton_linear_tolerance(double tolerance) {
+    settings_.matrix_free_linear_tolerance = tolerance;
+    settings_.eisenstat_walker = false;
+  }
+  // Time-accurate runs, after begin_time_step(): the next solve() holds the limiter evaluated
+  // at the second-order extrapolation of the state to the new time level,
+  // U* = 2 U^n - U^(n-1) (U^n on the first step, and where U* is not physical), and starts
+  // from U^n, with Newton-Krylov steps (--matrix-free auto) from its first iteration. The
+  // limiter's lag is then O(dt^2), like BDF2's own error, and the inner iteration has no live
+  // limiter to chatter (see run_time_accurate()).
+  void hold_limiter_at_predicted_state();
   double time_step() const { return time_dt_; }
   void set_inflow_ramp(int iterations) { settings_.inflow_ramp_iterations = iterations; }
   // The CFL number the next solve() starts from, and the base of its SER law

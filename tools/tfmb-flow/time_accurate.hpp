@@ -12,6 +12,12 @@
 
 namespace tfmb::flow {
 
+// The limiter of a second-order physical step's inner iterations. predicted: evaluated once
+// per step at the extrapolated state 2 U^n - U^(n-1) and held for the step
+// (FlowSolver::hold_limiter_at_predicted_state). live: as in a steady solve, live until the
+// inner residual stalls, then frozen where it stalled.
+enum class InnerLimiter { predicted, live };
+
 struct TimeAccurateSettings {
   double time_step = 0.0;     // physical time step [s]
   int time_steps = 0;         // number of physical steps
@@ -19,6 +25,10 @@ struct TimeAccurateSettings {
   int inner_iterations = 40;  // pseudo-time iterations per physical step
   // inner convergence: density residual down by this factor from its largest value in the step
   double inner_residual_drop = 1e-3;
+  InnerLimiter inner_limiter = InnerLimiter::predicted;
+  // GMRES tolerance of each inner Newton-Krylov step (fixed): the inner residual is measured per
+  // volume, and a looser solve leaves its error in the smallest cells (see run_time_accurate)
+  double inner_linear_tolerance = 1e-3;
   // the mean counts as converged when the wall pressure means of the first and second halves of
   // the statistics window differ by less than this, relative to the reference pressure
   double statistics_tolerance = 5e-3;
