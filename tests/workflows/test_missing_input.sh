@@ -46,7 +46,7 @@ for bad in "--limiter-rise-iterations -1" "--ilu-partitions 0" "--initial-state 
   "--second-order-cfl-start 0" "--turbulence-update-limit 0" "--multigrid-levels 0" \
   "--multigrid-levels 9" "--multigrid-post-smoother gauss-seidel" "--gmres-restart -1" \
   "--newton-cfl-follows-drop maybe" "--line-search-halvings -1" "--line-search-rise 0" \
-  "--inner-limiter lagged" "--inner-linear-tolerance 0"; do
+  "--inner-limiter lagged" "--inner-linear-tolerance -1"; do
   rc=0
   # shellcheck disable=SC2086 # the option and its value are two words
   "$bin/tfmb-flow" "$missing" --p0 2e5 --T0 300 $bad -o "$out" > /dev/null 2> "$scratch/stderr" || rc=$?

@@ -232,14 +232,15 @@ int main(int argc, char** argv) {
             "a physical step is converged when its density residual fell by this factor",
             CLI::PositiveNumber);
   table.add("--inner-limiter", o.inner_limiter, "",
-            "time-accurate second order: predicted: the limiter evaluated once per physical "
-            "step at the state extrapolated to the new time level (2 U^n - U^(n-1)) and held "
-            "for the step's Newton-Krylov iterations; live: as in a steady solve, live until "
-            "the inner residual stalls",
-            CLI::IsMember({"predicted", "live"}));
+            "time-accurate second order: live: as in a steady solve, live until the inner "
+            "residual stalls; predicted: evaluated once per physical step at the state "
+            "extrapolated to the new time level (2 U^n - U^(n-1)) and held for the step's "
+            "Newton-Krylov iterations",
+            CLI::IsMember({"live", "predicted"}));
   table.add("--inner-linear-tolerance", o.time.inner_linear_tolerance, "1",
-            "time-accurate runs: GMRES tolerance of each inner Newton-Krylov step (fixed)",
-            CLI::PositiveNumber);
+            "time-accurate runs: GMRES tolerance of each inner Newton-Krylov step, fixed (0: "
+            "the steady solver's forcing with --inner-limiter live, 1e-3 with predicted)",
+            CLI::NonNegativeNumber);
   table.add("--statistics-tolerance", o.time.statistics_tolerance, "1",
             "the time average counts as converged when the wall pressure means of the "
             "window's two halves differ by less than this, relative to p0",

@@ -481,7 +481,8 @@ class FlowStage {
                      std::to_string(time.time_steps) + ")");
     }
     time.reference_pressure = p_ref;
-    time.inner_limiter = o.inner_limiter == "live" ? InnerLimiter::live : InnerLimiter::predicted;
+    time.inner_limiter =
+        o.inner_limiter == "predicted" ? InnerLimiter::predicted : InnerLimiter::live;
     time.print_every = settings.print_every;
     time.cfl_start = settings.cfl_start;
     time.cfl_max = settings.cfl_max;

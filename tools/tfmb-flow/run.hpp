@@ -60,7 +60,7 @@ struct RunOptions {
   // does, so a restart from a first-order state keeps it live (NPARC 61 x 16 from a first-order
   // state: mass flow 0.07 % off the second-order one with it frozen there).
   std::string restart_limiter = "live";            // live | frozen
-  std::string inner_limiter = "predicted";         // predicted | live (time-accurate runs)
+  std::string inner_limiter = "live";              // live | predicted (time-accurate runs)
   // A steady solve from --restart that does not converge is solved again from the start state
   // (as without --restart, first-order start included), so that a coupling iterate whose walls
   // moved far from the restart state is not lost to that state.

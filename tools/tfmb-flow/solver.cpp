@@ -740,7 +740,9 @@ void FlowSolver::begin_time_step(double dt) {
 void FlowSolver::hold_limiter_at_predicted_state() {
   hold_limiter(false);
   limiter_stale_ = true;  // evaluated at U^n by the next solve() unless U* below is physical
-  if (time_u_nm1_.empty() || settings_.order < 2 || !settings_.limiter)
+  // (a first-order backward difference, the first step or one after a change of dt, has no
+  // level U^(n-1) one dt back to extrapolate from)
+  if (time_u_nm1_.empty() || time_a_[2] == 0.0 || settings_.order < 2 || !settings_.limiter)
     return;
   std::vector<State> predicted(u_.size());
   for (std::size_t i = 0; i < u_.size(); ++i) {

@@ -410,7 +410,8 @@ class FlowSolver {
   }
   // Time-accurate runs, after begin_time_step(): the next solve() holds the limiter evaluated
   // at the second-order extrapolation of the state to the new time level,
-  // U* = 2 U^n - U^(n-1) (U^n on the first step, and where U* is not physical), and starts
+  // U* = 2 U^n - U^(n-1) (U^n on a first-order backward-difference step, and where U* is not
+  // physical), and starts
   // from U^n, with Newton-Krylov steps (--matrix-free auto) from its first iteration. The
   // limiter's lag is then O(dt^2), like BDF2's own error, and the inner iteration has no live
   // limiter to chatter (see run_time_accurate()).

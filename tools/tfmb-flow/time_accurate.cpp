@@ -84,17 +84,24 @@ TimeAccurateResult run_time_accurate(FlowSolver& solver, const TimeAccurateSetti
   std::vector<TraceSums> sums(wall_curves.size());
   std::vector<WallTrace> last_traces(wall_curves.size());
   double cfl = s.cfl_start;
-  solver.set_newton_linear_tolerance(s.inner_linear_tolerance);
+  const bool predicted = s.inner_limiter == InnerLimiter::predicted;
+  if (s.inner_linear_tolerance > 0.0 || predicted) {
+    solver.set_newton_linear_tolerance(s.inner_linear_tolerance > 0.0
+                                           ? s.inner_linear_tolerance
+                                           : kPredictedLimiterLinearTolerance);
+  }
   for (int step = 1; step <= s.time_steps; ++step) {
     // Phase 1: converge the physical step in pseudo time. With the limiter live, the inner
-    // iterations chattered: nasa-2dcd SMOKE at NPR 2.412 (5e-6 s steps) took 32 inner
+    // iterations can chatter: nasa-2dcd SMOKE at NPR 2.412 (5e-6 s steps) took 32 inner
     // iterations a step, 25 of them defect corrections waiting for the stall rule to freeze the
-    // limiter at the lip corners; held at the predicted state, Newton-Krylov takes 4. Its GMRES
-    // solves to 1e-3: at 0.4 (the steady solver's forcing) each step's first update raised the
-    // residual per volume 165-fold in a 5.5e-9 m^2 wall cell at the lip (0.0511, 0.0234) m,
-    // where the looser solve had left its error (tools/tfmb-flow/README.md, Time-accurate mode).
+    // limiter at the lip corners; held at the predicted state, Newton-Krylov takes 4, if its
+    // GMRES solves to 1e-3: at 0.4 (the steady solver's forcing) each step's first update raised
+    // the residual per volume 165-fold in a 5.5e-9 m^2 wall cell at the lip (0.0511, 0.0234) m,
+    // where the looser solve had left its error. On the case mesh, where the live limiter takes
+    // 11-12 cheap defect corrections a step, the predicted one's Newton-Krylov steps cost 1.3-1.5
+    // times as much time (tools/tfmb-flow/README.md, Time-accurate mode).
     solver.begin_time_step(s.time_step);
-    if (s.inner_limiter == InnerLimiter::predicted)
+    if (predicted)
       solver.hold_limiter_at_predicted_state();
     solver.set_inner_iteration_control(s.inner_iterations, s.inner_residual_drop, cfl, 0);
     const SolveReport inner = solver.solve();
