@@ -29,16 +29,23 @@ namespace {
 // turbulence equation's likewise), the equation furthest from converged and where its residual
 // per volume is largest. A run stopped with its density down 8 orders may still have a
 // turbulence equation or an energy residual that stalled.
-std::string equation_drops_text(const SolveReport& rep, bool turbulent, TurbulenceModel model) {
-  if (rep.history.empty())
-    return "no iteration";
-  const int equations = turbulent ? 5 : 4;
+// Each equation's largest residual over the history (the mean flow's four, then the turbulence
+// equation's): the reference of /convergence/residual_history.
+std::array<double, 5> largest_residuals(const std::vector<IterationRecord>& history) {
   std::array<double, 5> largest{};
-  for (const IterationRecord& rec : rep.history) {
+  for (const IterationRecord& rec : history) {
     for (int v = 0; v < 4; ++v)
       largest[v] = std::max(largest[v], rec.residual[v]);
     largest[4] = std::max(largest[4], rec.turbulence_residual);
   }
+  return largest;
+}
+
+std::string equation_drops_text(const SolveReport& rep, bool turbulent, TurbulenceModel model) {
+  if (rep.history.empty())
+    return "no iteration";
+  const int equations = turbulent ? 5 : 4;
+  const std::array<double, 5> largest = largest_residuals(rep.history);
   const IterationRecord& last = rep.history.back();
   std::array<double, 5> drop{};
   int furthest = 0;
@@ -836,11 +843,7 @@ class FlowStage {
     // convergence criterion uses for the density: a jet started from air at rest has no density
     // residual at all in its first iteration, so the first value is no reference.
     std::vector<double> history;
-    State largest{};
-    for (const auto& rec : rep.history) {
-      for (int v = 0; v < 4; ++v)
-        largest[v] = std::max(largest[v], rec.residual[v]);
-    }
+    const std::array<double, 5> largest = largest_residuals(rep.history);
     for (const auto& rec : rep.history) {
       for (int v = 0; v < 4; ++v)
         history.push_back(largest[v] > 0.0 ? rec.residual[v] / largest[v] : 0.0);

@@ -833,16 +833,21 @@ std::vector<State> FlowSolver::residual() {
   return r;
 }
 
+bool FlowSolver::residual_row_counted(int i, int v) const {
+  if (fixed_node_[i])
+    return false;
+  const int b = wall_node_bc_[i];
+  if (b < 0)
+    return true;
+  // imposed at walls: the momentum, and an isothermal wall's energy
+  return !((v > 0 && v < 3) || (v == 3 && bcs_[b].kind == BcKind::wall_isothermal));
+}
+
 State FlowSolver::residual_norm() const {
   State s{};
   for (int i = 0; i < dual_.num_nodes; ++i) {
-    const bool wall = wall_node_bc_[i] >= 0;
-    if (fixed_node_[i])
-      continue;
     for (int v = 0; v < 4; ++v) {
-      if (wall && v > 0 && v < 3)
-        continue;
-      if (wall && v == 3 && bcs_[wall_node_bc_[i]].kind == BcKind::wall_isothermal)
+      if (!residual_row_counted(i, v))
         continue;
       const double r = res_[i][v] / dual_.volume[i];
       s[v] += r * r;
@@ -1890,17 +1895,13 @@ int FlowSolver::worst_residual_node(int v) const {
   int worst = 0;
   double largest = -1.0;
   for (int i = 0; i < dual_.num_nodes; ++i) {
-    const bool wall = wall_node_bc_[i] >= 0;
     double r = 0.0;
     if (v == 4) {
-      if (wall)
+      if (wall_node_bc_[i] >= 0)
         continue;  // nu_tilde is imposed there (turbulence_residual_norm())
       r = std::abs(sa_res_[i]);
     } else {
-      // the rows residual_norm() counts: no fixed node, no wall's momentum, no isothermal
-      // wall's energy (imposed there)
-      if (fixed_node_[i] || (wall && v > 0 && v < 3) ||
-          (wall && v == 3 && bcs_[wall_node_bc_[i]].kind == BcKind::wall_isothermal))
+      if (!residual_row_counted(i, v))
         continue;
       r = std::abs(res_[i][v]);
     }
@@ -1966,12 +1967,12 @@ void FlowSolver::finish_run(SolveLoop& s) {
         : s.collapsed > 10
             ? "the CFL number collapsed below 1e-3 of its start value"
             : "iteration limit (" + std::to_string(settings_.max_iterations) + ") reached";
-    report.worst_residual_at = dual_.coords[worst_residual_node()];
     for (int v = 0; v < 5; ++v) {
       const bool sa = v == 4 && settings_.turbulent && !sst();
       report.largest_residual_at[v] =
-          v < 4 || sa ? dual_.coords[worst_residual_node(v)] : report.worst_residual_at;
+          v < 4 || sa ? dual_.coords[worst_residual_node(v)] : report.largest_residual_at[0];
     }
+    report.worst_residual_at = report.largest_residual_at[0];
   }
   report.wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - s.start).count();

@@ -542,6 +542,8 @@ class FlowSolver {
   // the node whose residual per volume in equation v (0-3: the mean flow's, 4: nu_tilde) is
   // largest, over the rows the residual norm counts
   int worst_residual_node(int v = 0) const;
+  // whether residual_norm() counts equation v (0-3) of node i (not imposed there)
+  bool residual_row_counted(int i, int v) const;
 
   Mesh mesh_;  // internal numbering
   std::vector<int> new_of_old_, old_of_new_;
