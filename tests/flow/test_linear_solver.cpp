@@ -152,40 +152,10 @@ TEST(LinearSolver, IluWithLevelOfFill) {
   EXPECT_LE(r.relative_residual, 1e-10);
 }
 
-// Partitions (the ranges factorised and solved in parallel) keep the couplings between them:
-// the rows coupled to another range are ordered after every range's interior, so that with no
-// fill dropped the partitioned factorisation is still the exact LU and one application solves
-// the system (to the single-precision factors' 1e-4). Dropping the couplings between the ranges
-// instead (block Jacobi, the partitioned ILU before session 50) left an error of order 1.
-TEST(LinearSolver, PartitionedIluKeepsTheCouplingsBetweenItsRanges) {
-  const int m = 30, n = m * m, nb = 4;
-  const GridSystem g = grid_system(m, nb, 11, 0.2, 4.4);
-  for (int partitions : {2, 3}) {
-    BlockIlu0 exact;
-    exact.factorize(g.a, partitions, n);  // every fill-in kept, whatever the order
-    EXPECT_GT(exact.interface_rows(), 0) << partitions << " partitions";
-    EXPECT_LT(exact.interface_rows(), n / 4) << partitions << " partitions";
-    std::vector<double> x;
-    exact.apply(g.b, x);
-    double err = 0.0;
-    for (int k = 0; k < nb * n; ++k)
-      err = std::max(err, std::abs(x[k] - g.x_true[k]));
-    EXPECT_LT(err, 1e-4) << partitions << " partitions";
-    // ILU(0) and ILU(1) on the same ranges converge GMRES
-    for (int level : {0, 1}) {
-      BlockIlu0 ilu;
-      ilu.factorize(g.a, partitions, level);
-      const GmresResult r = gmres(g.a, ilu, g.b, x, 1e-10, 50, 200);
-      EXPECT_LE(r.relative_residual, 1e-10) << partitions << " partitions, ILU(" << level << ")";
-    }
-  }
-}
-
 // GMRES on a system whose vectors are above the threading threshold (8,000 entries): its vector
-// loops, its Gram-Schmidt (one parallel region per iteration) and the two ranges of its block ILU
-// run on the threads over fixed chunks whose sums are added in a fixed order, so one and two
-// threads take the same iterations to the same bits. Restarted, so that the restart's loops run
-// too.
+// loops and its Gram-Schmidt (one parallel region per iteration) run on the threads over fixed
+// chunks whose sums are added in a fixed order, so one and two threads take the same iterations
+// to the same bits. Restarted, so that the restart's loops run too.
 TEST(LinearSolver, GmresGivesTheSameBitsOnOneAndTwoThreads) {
   const GridSystem g = grid_system(50, 4, 5, 0.3, 4.2);  // 10,000 unknowns
   const BlockSparseMatrix& a = g.a;
@@ -198,7 +168,7 @@ TEST(LinearSolver, GmresGivesTheSameBitsOnOneAndTwoThreads) {
     (void)threads;
 #endif
     BlockIlu0 ilu;
-    ilu.factorize(a, 2, 1);  // two ranges: their interiors on the two threads
+    ilu.factorize(a, 1, 1);
     return gmres(a, ilu, b, x, 1e-10, 10, 400);
   };
 #ifdef _OPENMP

@@ -144,124 +144,103 @@ void multiply_rows_fixed(const BlockSparseMatrix& m, const std::vector<double>& 
     multiply_row<B>(m, m.val.data(), x, y, rows[k]);
 }
 
-// ILU elimination of the rows [first, last) of lu (in BlockIlu0's internal order) whose columns
-// all lie in the window [lo, hi) u [interface_begin, n): the window's slots in `pos` hold the
-// position of each column of the row being eliminated (-1 elsewhere). An interior range of a
-// partition is its own window plus the interface rows, so the partitions' eliminations touch
-// disjoint rows and slots and run in parallel; the interface rows' window is [0, n).
 template <int B>
-void eliminate_rows(BlockSparseMatrix& lu, int first, int last, int lo, int hi, int interface_begin,
-                    std::vector<int>& pos) {
-  auto slot = [&](int c) { return c < hi ? c - lo : (hi - lo) + (c - interface_begin); };
-  double tmp[B * B];
-  for (int i = first; i < last; ++i) {
-    for (int p = lu.row_ptr[i]; p < lu.row_ptr[i + 1]; ++p)
-      pos[slot(lu.col[p])] = p;
-    for (int p = lu.row_ptr[i]; p < lu.diag_pos[i]; ++p) {
-      const int k = lu.col[p];
-      // L_ik = A_ik * inv(U_kk)
-      block_mul<B>(lu.block(p), lu.block(lu.diag_pos[k]), tmp);
-      std::copy(tmp, tmp + B * B, lu.block(p));
-      for (int q = lu.diag_pos[k] + 1; q < lu.row_ptr[k + 1]; ++q) {
-        const int target = pos[slot(lu.col[q])];
-        if (target >= 0)
-          block_mul_sub<B>(lu.block(p), lu.block(q), lu.block(target));
-      }
-    }
-    double* d = lu.block(lu.diag_pos[i]);
-    if (!invert_block_fixed<B>(d, tmp)) {
-      // A singular pivot only happens for a broken operator; fall back to the identity.
-      for (int k = 0; k < B * B; ++k)
-        tmp[k] = (k % (B + 1) == 0) ? 1.0 : 0.0;
-    }
-    std::copy(tmp, tmp + B * B, d);
-    for (int p = lu.row_ptr[i]; p < lu.row_ptr[i + 1]; ++p)
-      pos[slot(lu.col[p])] = -1;
-  }
-}
-
-// The factorisation in BlockIlu0's internal order: each partition's interior rows in parallel
-// (each with its own slots), then the interface rows, which couple the partitions, on one thread.
-template <int B>
-void factorize_fixed(BlockSparseMatrix& lu, const std::vector<int>& range_begin,
-                     std::vector<std::vector<int>>& pos) {
+void factorize_fixed(BlockSparseMatrix& lu, std::vector<int>& pos_of_col, int partitions) {
   const int n = lu.num_rows;
-  const int partitions = static_cast<int>(range_begin.size()) - 1;
-  const int interface_begin = range_begin.back();
+  // Each partition only reads and writes rows and columns of its own range, so the partitions
+  // are independent (and pos_of_col can be shared).
 #pragma omp parallel for schedule(static, 1)
   for (int part = 0; part < partitions; ++part) {
-    const int lo = range_begin[part], hi = range_begin[part + 1];
-    eliminate_rows<B>(lu, lo, hi, lo, hi, interface_begin, pos[part]);
+    const int lo = static_cast<int>(static_cast<long>(n) * part / partitions);
+    const int hi = static_cast<int>(static_cast<long>(n) * (part + 1) / partitions);
+    double tmp[B * B];
+    for (int i = lo; i < hi; ++i) {
+      for (int p = lu.row_ptr[i]; p < lu.row_ptr[i + 1]; ++p) {
+        const int c = lu.col[p];
+        if (c >= lo && c < hi)
+          pos_of_col[c] = p;
+      }
+      for (int p = lu.row_ptr[i]; p < lu.diag_pos[i]; ++p) {
+        const int k = lu.col[p];
+        if (k < lo)
+          continue;
+        // L_ik = A_ik * inv(U_kk)
+        block_mul<B>(lu.block(p), lu.block(lu.diag_pos[k]), tmp);
+        std::copy(tmp, tmp + B * B, lu.block(p));
+        for (int q = lu.diag_pos[k] + 1; q < lu.row_ptr[k + 1]; ++q) {
+          const int c = lu.col[q];
+          if (c >= hi)
+            continue;
+          const int target = pos_of_col[c];
+          if (target >= 0)
+            block_mul_sub<B>(lu.block(p), lu.block(q), lu.block(target));
+        }
+      }
+      double* d = lu.block(lu.diag_pos[i]);
+      if (!invert_block_fixed<B>(d, tmp)) {
+        // A singular pivot only happens for a broken operator; fall back to the identity.
+        for (int k = 0; k < B * B; ++k)
+          tmp[k] = (k % (B + 1) == 0) ? 1.0 : 0.0;
+      }
+      std::copy(tmp, tmp + B * B, d);
+      for (int p = lu.row_ptr[i]; p < lu.row_ptr[i + 1]; ++p) {
+        const int c = lu.col[p];
+        if (c >= lo && c < hi)
+          pos_of_col[c] = -1;
+      }
+    }
   }
-  eliminate_rows<B>(lu, interface_begin, n, 0, n, n, pos[0]);
 }
 
-// x = (LU)^-1 b in BlockIlu0's internal order: y_i = b_order[i]; forward and backward sweeps over
-// y; x_order[i] = y_i. The interior ranges sweep in parallel, the interface rows on one thread
-// between them (after the forward sweep of every interior row, before their backward sweeps).
 template <int B>
-void ilu_apply_fixed(const BlockSparseMatrix& lu, const std::vector<float>& factors,
-                     const std::vector<int>& order, const std::vector<int>& range_begin,
-                     const std::vector<double>& b, std::vector<double>& y, std::vector<double>& x) {
+void ilu_apply_fixed(const BlockSparseMatrix& lu, const std::vector<float>& factors, int partitions,
+                     const std::vector<double>& b, std::vector<double>& x) {
   const int n = lu.num_rows;
-  const int partitions = static_cast<int>(range_begin.size()) - 1;
-  const int interface_begin = range_begin.back();
   const float* f = factors.data();
   constexpr std::size_t kEntries = B * B;
-  auto sub = [](const float* a, const double* v, double* out) {  // out -= A v
+  auto sub = [](const float* a, const double* v, double* y) {  // y -= A v
     for (int r = 0; r < B; ++r) {
       double s = 0.0;
       for (int c = 0; c < B; ++c)
         s += static_cast<double>(a[B * r + c]) * v[c];
-      out[r] -= s;
+      y[r] -= s;
     }
   };
-  auto forward = [&](int lo, int hi) {
+#pragma omp parallel for schedule(static, 1)
+  for (int part = 0; part < partitions; ++part) {
+    const int lo = static_cast<int>(static_cast<long>(n) * part / partitions);
+    const int hi = static_cast<int>(static_cast<long>(n) * (part + 1) / partitions);
+    std::copy(b.begin() + B * static_cast<std::size_t>(lo),
+              b.begin() + B * static_cast<std::size_t>(hi),
+              x.begin() + B * static_cast<std::size_t>(lo));
     for (int i = lo; i < hi; ++i) {
-      double* yi = y.data() + B * static_cast<std::size_t>(i);
-      const double* bi = b.data() + B * static_cast<std::size_t>(order[i]);
-      for (int k = 0; k < B; ++k)
-        yi[k] = bi[k];
-      for (int p = lu.row_ptr[i]; p < lu.diag_pos[i]; ++p)
-        sub(f + kEntries * static_cast<std::size_t>(p),
-            y.data() + B * static_cast<std::size_t>(lu.col[p]), yi);
+      double* xi = x.data() + B * static_cast<std::size_t>(i);
+      for (int p = lu.row_ptr[i]; p < lu.diag_pos[i]; ++p) {
+        const int c = lu.col[p];
+        if (c >= lo)
+          sub(f + kEntries * static_cast<std::size_t>(p),
+              x.data() + B * static_cast<std::size_t>(c), xi);
+      }
     }
-  };
-  auto backward = [&](int lo, int hi) {
     for (int i = hi - 1; i >= lo; --i) {
-      double* yi = y.data() + B * static_cast<std::size_t>(i);
-      for (int p = lu.diag_pos[i] + 1; p < lu.row_ptr[i + 1]; ++p)
-        sub(f + kEntries * static_cast<std::size_t>(p),
-            y.data() + B * static_cast<std::size_t>(lu.col[p]), yi);
+      double* xi = x.data() + B * static_cast<std::size_t>(i);
+      for (int p = lu.diag_pos[i] + 1; p < lu.row_ptr[i + 1]; ++p) {
+        const int c = lu.col[p];
+        if (c < hi)
+          sub(f + kEntries * static_cast<std::size_t>(p),
+              x.data() + B * static_cast<std::size_t>(c), xi);
+      }
       const float* d = f + kEntries * static_cast<std::size_t>(lu.diag_pos[i]);
       double r[B];
       for (int k = 0; k < B; ++k)
-        r[k] = yi[k];
-      double* xi = x.data() + B * static_cast<std::size_t>(order[i]);
+        r[k] = xi[k];
       for (int k = 0; k < B; ++k) {
         double s = 0.0;
         for (int c = 0; c < B; ++c)
           s += static_cast<double>(d[B * k + c]) * r[c];
-        yi[k] = s;
         xi[k] = s;
       }
     }
-  };
-  // one parallel region: the interface's single section waits for every forward sweep and the
-  // backward sweeps wait for it (the implicit barriers of for and single)
-#pragma omp parallel if (partitions > 1)
-  {
-#pragma omp for schedule(static, 1)
-    for (int part = 0; part < partitions; ++part)
-      forward(range_begin[part], range_begin[part + 1]);
-#pragma omp single
-    {
-      forward(interface_begin, n);
-      backward(interface_begin, n);
-    }
-#pragma omp for schedule(static, 1)
-    for (int part = 0; part < partitions; ++part)
-      backward(range_begin[part], range_begin[part + 1]);
   }
 }
 
@@ -353,109 +332,53 @@ BlockSparseMatrix make_pattern(int n, const std::vector<std::array<int, 2>>& edg
   return m;
 }
 
-void BlockIlu0::build_order(const BlockSparseMatrix& a) {
-  // The rows are cut into partitions_ contiguous ranges of the matrix's order; both rows of
-  // every block between two ranges are interface rows. The internal order takes each range's
-  // interior rows in the matrix's order, then every interface row. Two interiors then share no
-  // block, and no fill (ILU(k)) joins them either: fill follows paths through earlier rows, and
-  // every path between two interiors passes through an interface row, which comes after both.
-  // So the interiors factorise and solve independently, and the couplings between the ranges
-  // stay in the factors instead of being dropped (block Jacobi of ILU blocks, this class until
-  // session 50: nasa-2dcd NPR 8.91 took 18 % more GMRES iterations with 2 ranges than with 1).
-  // Moving only the later range's row of each coupling separates the interiors too, with half
-  // the rows, but on Back-Massier-Gier 71 x 41 (first-order segregated SA) that order ended in
-  // a limit cycle at a drop of 1e-6 where both sides moved converge in 84 iterations
-  // (PERFORMANCE-LOG.md, session 50).
-  const int n = a.num_rows;
-  auto part_of = [&](int r) {
-    int part = static_cast<int>(static_cast<long>(r) * partitions_ / n);
-    // the ranges' bounds are floor(n part / partitions); r is in range `part` when it is at or
-    // above the range's first row and below the next range's
-    while (part > 0 && r < static_cast<long>(n) * part / partitions_)
-      --part;
-    while (part + 1 < partitions_ && r >= static_cast<long>(n) * (part + 1) / partitions_)
-      ++part;
-    return part;
-  };
-  std::vector<int> part(n);
-  for (int r = 0; r < n; ++r)
-    part[r] = part_of(r);
-  std::vector<char> interface(n, 0);
-  for (int r = 0; r < n; ++r) {
-    for (int p = a.row_ptr[r]; p < a.row_ptr[r + 1]; ++p) {
-      const int c = a.col[p];
-      if (part[c] != part[r]) {
-        interface[r] = 1;
-        interface[c] = 1;  // the pattern need not be symmetric
-      }
-    }
-  }
-  order_.clear();
-  order_.reserve(n);
-  range_begin_.assign(partitions_ + 1, 0);
-  for (int k = 0; k < partitions_; ++k) {
-    range_begin_[k] = static_cast<int>(order_.size());
-    const int lo = static_cast<int>(static_cast<long>(n) * k / partitions_);
-    const int hi = static_cast<int>(static_cast<long>(n) * (k + 1) / partitions_);
-    for (int r = lo; r < hi; ++r) {
-      if (!interface[r])
-        order_.push_back(r);
-    }
-  }
-  range_begin_[partitions_] = static_cast<int>(order_.size());
-  for (int r = 0; r < n; ++r) {
-    if (interface[r])
-      order_.push_back(r);
-  }
-}
-
 void BlockIlu0::build_fill_pattern(const BlockSparseMatrix& a) {
-  // Symbolic ILU(k) row by row (Saad 2003, algorithm 10.5) in the internal order (build_order):
-  // the row's entries start at level 0; eliminating with an earlier row k (in increasing column
-  // order) adds the entries of U's row k at lev(i,k) + lev(k,j) + 1 where that is at most
-  // fill_level_.
+  // Symbolic ILU(k) row by row (Saad 2003, algorithm 10.5): the row's entries start at level
+  // 0; eliminating with an earlier row k (in increasing column order) adds the entries of U's
+  // row k at lev(i,k) + lev(k,j) + 1 where that is at most fill_level_. Fill between two
+  // partitions would be dropped by the factorisation, so it is not created.
   const int n = a.num_rows;
-  build_order(a);
-  std::vector<int> internal_of(n);
-  for (int i = 0; i < n; ++i)
-    internal_of[order_[i]] = i;
   std::vector<std::vector<int>> cols(n), levels(n);
   std::vector<int> level_of(n, -1);  // level of column c in the current row, -1 if absent
   std::vector<int> row_cols;
-  for (int i = 0; i < n; ++i) {
-    const int r = order_[i];
-    row_cols.clear();
-    for (int p = a.row_ptr[r]; p < a.row_ptr[r + 1]; ++p) {
-      const int c = internal_of[a.col[p]];
-      level_of[c] = 0;
-      row_cols.push_back(c);
-    }
-    // eliminate in increasing column order; fill may add columns below i still to visit
-    std::sort(row_cols.begin(), row_cols.end());
-    for (std::size_t m = 0; m < row_cols.size() && row_cols[m] < i; ++m) {
-      const int k = row_cols[m];
-      const int lik = level_of[k];
-      for (std::size_t q = 0; q < cols[k].size(); ++q) {
-        const int j = cols[k][q];
-        if (j <= k)
+  for (int part = 0; part < partitions_; ++part) {
+    const int lo = static_cast<int>(static_cast<long>(n) * part / partitions_);
+    const int hi = static_cast<int>(static_cast<long>(n) * (part + 1) / partitions_);
+    for (int i = lo; i < hi; ++i) {
+      row_cols.clear();
+      for (int p = a.row_ptr[i]; p < a.row_ptr[i + 1]; ++p) {
+        level_of[a.col[p]] = 0;
+        row_cols.push_back(a.col[p]);
+      }
+      // eliminate in increasing column order; fill may add columns below i still to visit
+      std::sort(row_cols.begin(), row_cols.end());
+      for (std::size_t m = 0; m < row_cols.size() && row_cols[m] < i; ++m) {
+        const int k = row_cols[m];
+        if (k < lo)
           continue;
-        const int lev = lik + levels[k][q] + 1;
-        if (lev > fill_level_)
-          continue;
-        if (level_of[j] < 0) {
-          level_of[j] = lev;
-          // keep row_cols sorted beyond m so that a new column below i is eliminated too
-          row_cols.insert(std::upper_bound(row_cols.begin() + m + 1, row_cols.end(), j), j);
-        } else {
-          level_of[j] = std::min(level_of[j], lev);
+        const int lik = level_of[k];
+        for (std::size_t q = 0; q < cols[k].size(); ++q) {
+          const int j = cols[k][q];
+          if (j <= k || j >= hi)
+            continue;
+          const int lev = lik + levels[k][q] + 1;
+          if (lev > fill_level_)
+            continue;
+          if (level_of[j] < 0) {
+            level_of[j] = lev;
+            // keep row_cols sorted beyond m so that a new column below i is eliminated too
+            row_cols.insert(std::upper_bound(row_cols.begin() + m + 1, row_cols.end(), j), j);
+          } else {
+            level_of[j] = std::min(level_of[j], lev);
+          }
         }
       }
-    }
-    cols[i] = row_cols;
-    levels[i].resize(row_cols.size());
-    for (std::size_t m = 0; m < row_cols.size(); ++m) {
-      levels[i][m] = level_of[row_cols[m]];
-      level_of[row_cols[m]] = -1;
+      cols[i] = row_cols;
+      levels[i].resize(row_cols.size());
+      for (std::size_t m = 0; m < row_cols.size(); ++m) {
+        levels[i][m] = level_of[row_cols[m]];
+        level_of[row_cols[m]] = -1;
+      }
     }
   }
   lu_.num_rows = n;
@@ -472,19 +395,14 @@ void BlockIlu0::build_fill_pattern(const BlockSparseMatrix& a) {
     lu_.row_ptr[i + 1] = static_cast<int>(lu_.col.size());
   }
   scatter_.resize(a.col.size());
-  for (int r = 0; r < n; ++r) {
-    for (int p = a.row_ptr[r]; p < a.row_ptr[r + 1]; ++p) {
-      scatter_[p] = lu_.find(internal_of[r], internal_of[a.col[p]]);
+  for (int i = 0; i < n; ++i) {
+    for (int p = a.row_ptr[i]; p < a.row_ptr[i + 1]; ++p) {
+      scatter_[p] = lu_.find(i, a.col[p]);
       // every row starts from all of its matrix entries (level 0), so each one has a place; a
       // missing one would make factorize() copy its block to a negative offset
       TFMB_ASSERT(scatter_[p] >= 0,
-                  "ILU fill pattern lacks the matrix block (" << r << ", " << a.col[p] << ")");
+                  "ILU fill pattern lacks the matrix block (" << i << ", " << a.col[p] << ")");
     }
-  }
-  pos_.assign(partitions_, {});
-  for (int k = 0; k < partitions_; ++k) {
-    const int window = range_begin_[k + 1] - range_begin_[k] + (n - range_begin_.back());
-    pos_[k].assign(k == 0 ? std::max(window, n) : window, -1);  // range 0's also the interface's
   }
   pattern_row_ptr_ = a.row_ptr;
   pattern_col_ = a.col;
@@ -493,50 +411,64 @@ void BlockIlu0::build_fill_pattern(const BlockSparseMatrix& a) {
 void BlockIlu0::factorize(const BlockSparseMatrix& a, int partitions, int fill_level) {
   const int n = a.num_rows;
   partitions = std::max(1, std::min(partitions, n));
-  fill_level = std::max(fill_level, 0);
-  if (fill_level != fill_level_ || partitions != partitions_ || a.block_size != lu_.block_size ||
-      a.row_ptr != pattern_row_ptr_ || a.col != pattern_col_) {
-    fill_level_ = fill_level;
-    partitions_ = partitions;
-    build_fill_pattern(a);
-  }
-  // the fill blocks zeroed and the matrix's blocks scattered into their places, both threaded:
-  // serial, the zeroing and the copy were 2.6 % of a two-thread run on nasa-2dcd's case mesh
-  // (51k nodes, ILU(1)), with the second thread idle
-  const int be = a.block_entries();
-  lu_.val.resize(static_cast<std::size_t>(be) * lu_.col.size());
-  if (fill_level_ > 0)
-    lu_.set_zero();  // the fill blocks; with ILU(0) every block is one of the matrix's
-  const long blocks = static_cast<long>(scatter_.size());
-  const bool threaded = lu_.val.size() > kThreadedLength;
-  const double* from = a.val.data();
-  double* to = lu_.val.data();
+  if (fill_level <= 0) {
+    if (lu_.block_size != a.block_size || lu_.row_ptr != a.row_ptr || lu_.col != a.col) {
+      lu_ = a;
+    } else {
+      // same pattern as the last factorisation: copy the values only, threaded (a serial copy
+      // of the 52 MB of a 58k-node matrix was 1.5 % of a two-thread run)
+      const std::size_t size = a.val.size();
+      const double* from = a.val.data();
+      double* to = lu_.val.data();
+#pragma omp parallel for schedule(static) if (size > kThreadedLength)
+      for (int c = 0; c < kReductionChunks; ++c)
+        std::copy(from + size * c / kReductionChunks, from + size * (c + 1) / kReductionChunks,
+                  to + size * c / kReductionChunks);
+    }
+    pattern_col_.clear();
+  } else {
+    if (fill_level != fill_level_ || partitions != partitions_ || a.block_size != lu_.block_size ||
+        a.row_ptr != pattern_row_ptr_ || a.col != pattern_col_) {
+      fill_level_ = fill_level;
+      partitions_ = partitions;
+      build_fill_pattern(a);
+    }
+    // the fill blocks zeroed and the matrix's blocks scattered into their places, both threaded:
+    // serial, the zeroing and the copy were 2.6 % of a two-thread run on nasa-2dcd's case mesh
+    // (51k nodes, ILU(1)), with the second thread idle
+    const int be = a.block_entries();
+    lu_.val.resize(static_cast<std::size_t>(be) * lu_.col.size());
+    lu_.set_zero();
+    const long blocks = static_cast<long>(scatter_.size());
+    const bool threaded = lu_.val.size() > kThreadedLength;
+    const double* from = a.val.data();
+    double* to = lu_.val.data();
 #pragma omp parallel for schedule(static) if (threaded)
-  for (long p = 0; p < blocks; ++p)
-    std::copy(from + be * p, from + be * (p + 1), to + be * static_cast<std::size_t>(scatter_[p]));
+    for (long p = 0; p < blocks; ++p)
+      std::copy(from + be * p, from + be * (p + 1),
+                to + be * static_cast<std::size_t>(scatter_[p]));
+  }
+  fill_level_ = fill_level;
+  partitions_ = partitions;
+  pos_of_col_.assign(n, -1);
   dispatch(lu_.block_size,
-           [&](auto b) { factorize_fixed<decltype(b)::value>(lu_, range_begin_, pos_); });
+           [&](auto b) { factorize_fixed<decltype(b)::value>(lu_, pos_of_col_, partitions_); });
   const std::size_t size = lu_.val.size();
   factors_.resize(size);
-  const double* factored = lu_.val.data();
-  float* single = factors_.data();
+  const double* from = lu_.val.data();
+  float* to = factors_.data();
 #pragma omp parallel for schedule(static) if (size > kThreadedLength)
   for (int c = 0; c < kReductionChunks; ++c) {
     for (std::size_t k = size * c / kReductionChunks; k < size * (c + 1) / kReductionChunks; ++k)
-      single[k] = static_cast<float>(factored[k]);
+      to[k] = static_cast<float>(from[k]);
   }
 }
 
 void BlockIlu0::apply(const std::vector<double>& b, std::vector<double>& x) const {
   x.resize(b.size());
-  internal_.resize(b.size());
   dispatch(lu_.block_size, [&](auto bs) {
-    ilu_apply_fixed<decltype(bs)::value>(lu_, factors_, order_, range_begin_, b, internal_, x);
+    ilu_apply_fixed<decltype(bs)::value>(lu_, factors_, partitions_, b, x);
   });
-}
-
-int BlockIlu0::interface_rows() const {
-  return range_begin_.empty() ? 0 : lu_.num_rows - range_begin_.back();
 }
 
 namespace {

@@ -74,30 +74,24 @@ class BlockIlu0 final : public Preconditioner {
   // Factorises a copy of the matrix in the pattern of level `fill_level` (in double precision);
   // diagonal blocks are stored inverted. The factors used by apply() are kept in single
   // precision: the triangular solves are memory bound, and a preconditioner needs no more
-  // digits. With partitions > 1, the rows are cut into that many contiguous ranges; the rows
-  // coupled to another range (the interface) are ordered after every range's
-  // interior, so that the interiors factorise and solve in parallel and the interface on one
-  // thread, with no coupling dropped (build_order). The result does not depend on the thread count.
-  // The pattern and order are computed once per matrix pattern and kept.
+  // digits. With partitions > 1, the rows are cut into that many contiguous ranges and
+  // couplings between ranges are dropped (block-Jacobi of ILU blocks): the ranges are
+  // factorised and solved in parallel, and the result does not depend on the thread count.
+  // The fill pattern is computed once per matrix pattern and kept.
   void factorize(const BlockSparseMatrix& a, int partitions = 1, int fill_level = 0);
   void apply(const std::vector<double>& b, std::vector<double>& x) const override;  // (LU)^-1 b
   std::size_t factor_blocks() const { return lu_.col.size(); }  // blocks stored in L and U
-  int interface_rows() const;  // rows ordered after the partitions' interiors
 
  private:
-  void build_order(const BlockSparseMatrix& a);
   void build_fill_pattern(const BlockSparseMatrix& a);
-  BlockSparseMatrix lu_;               // in the internal order
-  std::vector<float> factors_;         // lu_.val in single precision
-  std::vector<int> order_;             // matrix row of each internal row
-  std::vector<int> range_begin_;       // each interior's first row, then the interface's
-  std::vector<std::vector<int>> pos_;  // each partition's elimination slots (eliminate_rows)
-  int partitions_ = 0;
-  int fill_level_ = -1;
+  BlockSparseMatrix lu_;
+  std::vector<float> factors_;  // lu_.val in single precision
+  std::vector<int> pos_of_col_;
+  int partitions_ = 1;
+  int fill_level_ = 0;
   // the pattern lu_ was built for, and where each block of that matrix goes in lu_
   std::vector<int> pattern_row_ptr_, pattern_col_;
   std::vector<int> scatter_;
-  mutable std::vector<double> internal_;  // apply()'s vector in the internal order
 };
 
 struct GmresResult {

@@ -194,9 +194,9 @@ int main(int argc, char** argv) {
             "ILU solves along them exactly)",
             CLI::IsMember({"rcm", "lines"}));
   table.add("--ilu-partitions", o.settings.ilu_partitions, "1",
-            "row ranges of the block ILU preconditioner, factorised and applied in parallel (the "
-            "rows coupled to another range ordered after every range's interior, no coupling "
-            "dropped); the same value gives the same result on any number of threads",
+            "independent row ranges of the block ILU preconditioner (couplings between them "
+            "dropped), factorised and applied in parallel; the same value gives the same result "
+            "on any number of threads",
             tfmb::cli::range(1, 64));
   table.add("--ilu-fill", o.settings.ilu_fill_level, "1",
             "level of fill of the block ILU preconditioner (0: ILU(0), the pattern of the "

@@ -148,9 +148,8 @@ struct SolverSettings {
   // second-order defect-correction steps (see linear_step). The Newton-Krylov steps always keep
   // the whole basis.
   int gmres_restart = 0;
-  // Block ILU partitions (row ranges whose interiors factorise and solve in parallel, see
-  // BlockIlu0): 2 lets two threads share the preconditioner; the same value gives the same
-  // result on any number of threads.
+  // ILU(0) partitions (independent row ranges, see BlockIlu0): 2 lets two threads share the
+  // preconditioner; the same value gives the same result on any number of threads.
   int ilu_partitions = 2;
   // Level of fill of the block ILU preconditioner (0: ILU(0); see BlockIlu0)
   int ilu_fill_level = 0;
