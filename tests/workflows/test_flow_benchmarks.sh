@@ -14,6 +14,7 @@ rc=0; "$src/workflows/flow-benchmarks" --pairs 0 --bin "$bin" 2>/dev/null || rc=
 "$src/workflows/flow-benchmarks" --run-root "$scratch" --bin "$bin" --only nparc-0.75-240x60 \
   --json "$scratch/figures.json" | tee "$scratch/table.txt"
 grep -q '^| nparc-0.75-240x60 | 14,701 | 1 | ' "$scratch/table.txt"
+grep -q 'OpenMP waits: ' "$scratch/table.txt"  # the waits the timings ran with
 /usr/bin/python3 - "$scratch/figures.json" <<'PY'
 import json, sys
 [f] = json.load(open(sys.argv[1]))
