@@ -24,3 +24,13 @@ assert f["residual_s"] > 0 and f["wall_s"] >= f["residual_s"], f
 assert f["peak_mb"] > 0, f
 print("flow-benchmarks: figures read back:", {k: f[k] for k in ("iterations", "linear", "wall_s")})
 PY
+# the cost ratio's split into the GMRES iterations' growth and the rest (figures of session 52's
+# call: 55 / 535 and 68 / 1,024 iterations, cost ratio 1.74)
+/usr/bin/python3 - "$src/workflows/flow-benchmarks" <<'PY'
+import sys
+from importlib.machinery import SourceFileLoader
+fb = SourceFileLoader("flow_benchmarks", sys.argv[1]).load_module()
+iterations, rest = fb.cost_split({"iterations": 55, "linear": 535}, {"iterations": 68, "linear": 1024}, 1.74)
+assert abs(iterations - 1.548) < 1e-3 and abs(rest - 1.124) < 1e-3, (iterations, rest)
+print(f"flow-benchmarks: cost split {iterations:.3f} x {rest:.3f}")
+PY
