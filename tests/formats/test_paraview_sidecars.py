@@ -92,12 +92,15 @@ def check_mesh_fields(where, leaf, h5):
 
 
 def run_under_xvfb(xvfb, command, timeout):
-    """Runs command under xvfb-run on a free display. A connection refused by the new X server
-    (ParaView: "bad X server connection", seen once in CI with the machine loaded, display :100
-    beside a stale :99 lock) is the server not yet serving, not ParaView failing: tried up to
-    three times, a few seconds apart."""
+    """Runs command under xvfb-run on a free display. -noreset: by default Xvfb resets itself
+    when its last client disconnects, and a client that connects during the reset is dropped
+    before it is served, so its XOpenDisplay fails (ParaView: "bad X server connection"). pvpython
+    opens the display more than once, and on a loaded machine the reset lasts long enough to
+    hit: three attempts in a row failed so in a CI rehearsal (session 54). The same failure and
+    fix in pyvista's CI: pyvista/pyvista pull request 9188. A connection refused all the same is
+    tried up to three times, a few seconds apart."""
     for attempt in range(3):
-        result = subprocess.run([xvfb, "-a", "-s", "-screen 0 1024x768x24"] + command,
+        result = subprocess.run([xvfb, "-a", "-s", "-screen 0 1024x768x24 -noreset"] + command,
                                 capture_output=True, text=True, timeout=timeout)
         x_failure = "bad X server connection" in result.stderr or "cannot open display" in result.stderr
         if result.returncode == 0 or not x_failure:
