@@ -361,3 +361,36 @@ TEST(Multigrid, LaterSetupOfTheSamePatternSumsTheCoarseBlocksAgain) {
   other_fresh.apply(other.b, y_fresh);
   EXPECT_EQ(y_reused, y_fresh);
 }
+
+// The first matching's pairs kept with their matrix: a later setup whose pairs are the last
+// ones sums that matrix's blocks again before the second matching reads them. With the y
+// couplings raised from 0.3 to 0.6 of the x ones, the first matching still pairs along x, but
+// the second now pairs those pairs along y (two y edges of 0.6 against one x edge of 1 between
+// neighbouring pairs): the levels and the cycle must then be those of a multigrid built afresh
+// for the new matrix, bit for bit. The pairs' matrix kept from the first setup (its sums left
+// out) gives the second matching the old strengths and fails it.
+TEST(Multigrid, KeptPairsAreSummedAgainBeforeTheSecondMatching) {
+  const int nb = 4;
+  const Grid weak_y = anisotropic_grid(16, nb, 1.0, 0.3, 0.05, 0.02, 14);
+  const Grid strong_y = anisotropic_grid(16, nb, 1.0, 0.6, 0.05, 0.02, 14);
+  int pairs_weak = 0, pairs_strong = 0;
+  ASSERT_EQ(pairwise_aggregates(weak_y.a, 0.25, pairs_weak),
+            pairwise_aggregates(strong_y.a, 0.25, pairs_strong));
+  AggregationMultigrid::Options options;
+  options.max_levels = 2;
+  options.coarsest_nodes = 10;
+  AggregationMultigrid reused, fresh, first;
+  reused.setup(weak_y.a, 1, 0, options);
+  reused.setup(strong_y.a, 1, 0, options);
+  fresh.setup(strong_y.a, 1, 0, options);
+  first.setup(weak_y.a, 1, 0, options);
+  std::vector<double> x_reused, x_fresh, x_first;
+  reused.apply(strong_y.b, x_reused);
+  fresh.apply(strong_y.b, x_fresh);
+  first.apply(strong_y.b, x_first);
+  ASSERT_EQ(reused.levels(), 2);
+  EXPECT_EQ(reused.level_nodes(1), fresh.level_nodes(1));
+  EXPECT_EQ(x_reused, x_fresh);
+  // the two matrices' multigrids differ, so a stale pairs' matrix shows
+  EXPECT_NE(x_first, x_fresh);
+}

@@ -71,6 +71,30 @@ void aggregate_members(const std::vector<int>& aggregate, int count, std::vector
     members[next[aggregate[i]]++] = i;
 }
 
+// The coarse matrix's blocks summed again from the fine ones (the Galerkin product of
+// piecewise-constant prolongation) into its kept pattern, `coarse_block` the coarse block of each
+// fine one: a coarse row at a time from its aggregate's members in node order, the order
+// galerkin_coarse_matrix sums them in, so the same bits as that and whatever the number of
+// threads.
+void sum_aggregated_blocks(const BlockSparseMatrix& fine, const std::vector<int>& member_ptr,
+                           const std::vector<int>& members, const std::vector<int>& coarse_block,
+                           BlockSparseMatrix& coarse) {
+  const int be = fine.block_entries();
+#pragma omp parallel for schedule(static) if (coarse.num_rows > kThreadedNodes)
+  for (int c = 0; c < coarse.num_rows; ++c) {
+    std::fill(coarse.block(coarse.row_ptr[c]), coarse.block(coarse.row_ptr[c + 1]), 0.0);
+    for (int m = member_ptr[c]; m < member_ptr[c + 1]; ++m) {
+      const int i = members[m];
+      for (int p = fine.row_ptr[i]; p < fine.row_ptr[i + 1]; ++p) {
+        const double* from = fine.block(p);
+        double* to = coarse.block(coarse_block[p]);
+        for (int k = 0; k < be; ++k)
+          to[k] += from[k];
+      }
+    }
+  }
+}
+
 // The inverses of a's diagonal blocks, in single precision (a smoother's own error is far
 // larger than their rounding). A singular block falls back to the identity, as the block ILU's
 // pivots do (only a broken operator has one).
@@ -117,6 +141,13 @@ std::vector<int> pairwise_aggregates(const BlockSparseMatrix& a, double strong_f
   const int n = a.num_rows;
   const int be = a.block_entries();
   const std::vector<unsigned> imposed = imposed_components(a);
+  // each block's strength once (the matching below reads it up to twice), on all threads: the
+  // matching itself is sequential
+  std::vector<double> strength(a.col.size());
+  const long blocks = static_cast<long>(a.col.size());
+#pragma omp parallel for schedule(static) if (n > kThreadedNodes)
+  for (long p = 0; p < blocks; ++p)
+    strength[p] = frobenius_norm(a.block(static_cast<int>(p)), be);
   std::vector<int> aggregate(n, -1);
   count = 0;
   for (int i = 0; i < n; ++i) {
@@ -125,7 +156,7 @@ std::vector<int> pairwise_aggregates(const BlockSparseMatrix& a, double strong_f
     double strongest = 0.0;
     for (int p = a.row_ptr[i]; p < a.row_ptr[i + 1]; ++p) {
       if (a.col[p] != i)
-        strongest = std::max(strongest, frobenius_norm(a.block(p), be));
+        strongest = std::max(strongest, strength[p]);
     }
     int partner = -1;
     double best = strong_fraction * strongest;
@@ -133,7 +164,7 @@ std::vector<int> pairwise_aggregates(const BlockSparseMatrix& a, double strong_f
       const int j = a.col[p];
       if (j == i || aggregate[j] >= 0 || imposed[j] != imposed[i])
         continue;
-      const double s = frobenius_norm(a.block(p), be);
+      const double s = strength[p];
       if (s > 0.0 && s >= best) {
         best = s;
         partner = j;
@@ -251,15 +282,33 @@ bool AggregationMultigrid::coarsen(int l) {
   if (fine.num_rows <= options_.coarsest_nodes)
     return false;
   int pairs = 0;
-  const std::vector<int> first = pairwise_aggregates(fine, options_.strong_fraction, pairs);
-  const BlockSparseMatrix paired = galerkin_coarse_matrix(fine, first, pairs);
+  std::vector<int> first = pairwise_aggregates(fine, options_.strong_fraction, pairs);
+  // the matrix of the first matching's pairs, which the second matching reads: where the pairs
+  // are the last setup's, its pattern is kept and its blocks only summed again
+  Pairing& pairing = levels_[l].pairing;
+  if (pairing.matrix.num_rows != pairs || pairing.aggregate != first) {
+    pairing.matrix = galerkin_coarse_matrix(fine, first, pairs);
+    pairing.aggregate = std::move(first);
+    aggregate_members(pairing.aggregate, pairs, pairing.member_ptr, pairing.members);
+    pairing.coarse_block.resize(fine.col.size());
+    for (int i = 0; i < fine.num_rows; ++i) {
+      for (int p = fine.row_ptr[i]; p < fine.row_ptr[i + 1]; ++p)
+        pairing.coarse_block[p] =
+            pairing.matrix.find(pairing.aggregate[i], pairing.aggregate[fine.col[p]]);
+    }
+  } else {
+    sum_aggregated_blocks(fine, pairing.member_ptr, pairing.members, pairing.coarse_block,
+                          pairing.matrix);
+  }
+  const BlockSparseMatrix& paired = pairing.matrix;
+  const std::vector<int>& first_pairs = pairing.aggregate;
   int count = 0;
   const std::vector<int> second = pairwise_aggregates(paired, options_.strong_fraction, count);
   if (count * 3 > fine.num_rows * 2)  // coarsening stalled (under 1.5 nodes per aggregate)
     return false;
   std::vector<int> aggregate(fine.num_rows);
   for (int i = 0; i < fine.num_rows; ++i)
-    aggregate[i] = second[first[i]];
+    aggregate[i] = second[first_pairs[i]];
   if (l + 1 < levels() && levels_[l + 1].matrix.num_rows == count &&
       levels_[l].aggregate == aggregate)
     return true;
@@ -282,23 +331,9 @@ bool AggregationMultigrid::coarsen(int l) {
 // product of piecewise-constant prolongation), a coarse row at a time from its aggregate's
 // members in node order: the same sums whatever the number of threads.
 void AggregationMultigrid::sum_coarse_blocks(int l) {
-  const BlockSparseMatrix& fine = matrix(l);
   const Level& level = levels_[l];
-  BlockSparseMatrix& coarse = levels_[l + 1].matrix;
-  const int be = fine.block_entries();
-#pragma omp parallel for schedule(static) if (coarse.num_rows > kThreadedNodes)
-  for (int c = 0; c < coarse.num_rows; ++c) {
-    std::fill(coarse.block(coarse.row_ptr[c]), coarse.block(coarse.row_ptr[c + 1]), 0.0);
-    for (int m = level.member_ptr[c]; m < level.member_ptr[c + 1]; ++m) {
-      const int i = level.members[m];
-      for (int p = fine.row_ptr[i]; p < fine.row_ptr[i + 1]; ++p) {
-        const double* from = fine.block(p);
-        double* to = coarse.block(level.coarse_block[p]);
-        for (int k = 0; k < be; ++k)
-          to[k] += from[k];
-      }
-    }
-  }
+  sum_aggregated_blocks(matrix(l), level.member_ptr, level.members, level.coarse_block,
+                        levels_[l + 1].matrix);
 }
 
 void AggregationMultigrid::apply(const std::vector<double>& b, std::vector<double>& x) const {

@@ -63,6 +63,13 @@ class AggregationMultigrid final : public Preconditioner {
   int level_nodes(int level) const;
 
  private:
+  // The first of a level's two pairwise matchings and the matrix of its pairs, which the second
+  // reads (its pattern and block map kept while the pairs stay the same)
+  struct Pairing {
+    std::vector<int> aggregate;  // the pair of each node
+    BlockSparseMatrix matrix;
+    std::vector<int> member_ptr, members, coarse_block;
+  };
   struct Level {
     BlockSparseMatrix matrix;  // empty on the fine level (fine_ is used)
     BlockIlu0 smoother;
@@ -71,6 +78,7 @@ class AggregationMultigrid final : public Preconditioner {
     std::vector<int> aggregate;            // of each node, on the next coarser level
     std::vector<int> member_ptr, members;  // the nodes of each aggregate of the next level
     std::vector<int> coarse_block;  // of each block of this level's matrix, in the next one's
+    Pairing pairing;
     mutable std::vector<double> b, x, r, e, q;
   };
   const BlockSparseMatrix& matrix(int level) const;
