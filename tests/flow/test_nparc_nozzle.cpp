@@ -218,11 +218,11 @@ TEST(NparcNozzle, NewtonStepsAfterTheLimiterFreezeReachTheDefectCorrectionSoluti
 // solution within the yardsticks of NormalShockExitPressure075 (the limiter is frozen at a
 // different iteration in each run, so the discrete equations, and the state within a cell of the
 // shock, differ by more than the solver's tolerance), and multigrid takes fewer GMRES iterations
-// per nonlinear iteration on both meshes (2.7 and 5.9 against 5.5 and 12.1). How that count
-// grows with the mesh is printed, not asserted: on meshes this small multigrid's grows about as
-// ILU's does (2.15 against 2.21); the growth is checked on a linear system in
+// per nonlinear iteration on both meshes (the figures: tools/tfmb-flow/README.md, "Aggregation
+// multigrid"). How that count grows with the mesh is printed, not asserted: on meshes this small
+// multigrid's grows about as ILU's does; the growth is checked on a linear system in
 // Multigrid.GmresIterationsGrowLessWithTheGridThanWithIlu, and NPARC 240 x 60 against 480 x 120
-// is in tools/tfmb-flow/README.md.
+// is in the same README.
 TEST(NparcNozzle, MultigridPreconditionerTakesFewerGmresIterationsThanIlu) {
   const Quasi1dNozzle exact(nparc::area_in, 0.0, 5.0, 10.0, kAir.gamma, 0.75);
   ASSERT_TRUE(exact.has_shock());
