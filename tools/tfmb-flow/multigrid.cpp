@@ -71,6 +71,16 @@ void aggregate_members(const std::vector<int>& aggregate, int count, std::vector
     members[next[aggregate[i]]++] = i;
 }
 
+// The coarse block of each fine block (the fine matrix's aggregates into the coarse pattern).
+void coarse_block_map(const BlockSparseMatrix& fine, const std::vector<int>& aggregate,
+                      const BlockSparseMatrix& coarse, std::vector<int>& coarse_block) {
+  coarse_block.resize(fine.col.size());
+  for (int i = 0; i < fine.num_rows; ++i) {
+    for (int p = fine.row_ptr[i]; p < fine.row_ptr[i + 1]; ++p)
+      coarse_block[p] = coarse.find(aggregate[i], aggregate[fine.col[p]]);
+  }
+}
+
 // The coarse matrix's blocks summed again from the fine ones (the Galerkin product of
 // piecewise-constant prolongation) into its kept pattern, `coarse_block` the coarse block of each
 // fine one: a coarse row at a time from its aggregate's members in node order, the order
@@ -290,12 +300,7 @@ bool AggregationMultigrid::coarsen(int l) {
     pairing.matrix = galerkin_coarse_matrix(fine, first, pairs);
     pairing.aggregate = std::move(first);
     aggregate_members(pairing.aggregate, pairs, pairing.member_ptr, pairing.members);
-    pairing.coarse_block.resize(fine.col.size());
-    for (int i = 0; i < fine.num_rows; ++i) {
-      for (int p = fine.row_ptr[i]; p < fine.row_ptr[i + 1]; ++p)
-        pairing.coarse_block[p] =
-            pairing.matrix.find(pairing.aggregate[i], pairing.aggregate[fine.col[p]]);
-    }
+    coarse_block_map(fine, pairing.aggregate, pairing.matrix, pairing.coarse_block);
   } else {
     sum_aggregated_blocks(fine, pairing.member_ptr, pairing.members, pairing.coarse_block,
                           pairing.matrix);
@@ -317,11 +322,7 @@ bool AggregationMultigrid::coarsen(int l) {
   Level& level = levels_[l];
   level.aggregate = std::move(aggregate);
   aggregate_members(level.aggregate, count, level.member_ptr, level.members);
-  level.coarse_block.resize(fine.col.size());
-  for (int i = 0; i < fine.num_rows; ++i) {
-    for (int p = fine.row_ptr[i]; p < fine.row_ptr[i + 1]; ++p)
-      level.coarse_block[p] = coarse.matrix.find(level.aggregate[i], level.aggregate[fine.col[p]]);
-  }
+  coarse_block_map(fine, level.aggregate, coarse.matrix, level.coarse_block);
   levels_.resize(l + 1);
   levels_.push_back(std::move(coarse));
   return true;
